@@ -1,0 +1,30 @@
+/* The aalab engine API: an engine holds the Vulkan device and a scene cache; jobs run through it and
+ * report what happens as events (DESIGN.md, "Engine API is events out"). */
+#ifndef AA_H
+#define AA_H
+
+#include <stdbool.h>
+
+#include "error.h"
+#include "job.h"
+
+struct aa_engine;
+
+struct aa_engine_options {
+	const char *device;   /* substring of the device name or index ("0"); NULL: $AALAB_DEVICE or first */
+	bool validation;      /* enable VK_LAYER_KHRONOS_validation if installed ($AALAB_VALIDATION=1 too) */
+	int verbose;
+};
+
+int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **out, struct aa_error *err);
+void aa_engine_destroy(struct aa_engine *engine);
+/* Number of validation-layer errors reported so far (tests fail on any). */
+int aa_engine_validation_errors(const struct aa_engine *engine);
+const char *aa_engine_device_name(const struct aa_engine *engine);
+
+/* Runs a job to completion (or cancellation by the callback). On success *result holds everything the
+ * results writer needs; free it with aa_job_result_free + free. */
+int aa_job_run(struct aa_engine *engine, const struct aa_job_spec *spec, aa_event_fn on_event, void *user,
+	       struct aa_job_result **result, struct aa_error *err);
+
+#endif

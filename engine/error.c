@@ -1,0 +1,48 @@
+/* Error values: a code, the path of the bad field and a readable message. */
+#include "error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+int aa_error_set(struct aa_error *err, enum aa_error_code code, const char *path,
+		 const char *fmt, ...)
+{
+	if (!err)
+		return -1;
+	err->code = code;
+	snprintf(err->path, sizeof err->path, "%s", path ? path : "");
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err->message, sizeof err->message, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+void aa_error_prefix(struct aa_error *err, const char *fmt, ...)
+{
+	if (!err)
+		return;
+	char prefix[512], old[sizeof err->message];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(prefix, sizeof prefix, fmt, ap);
+	va_end(ap);
+	memcpy(old, err->message, sizeof old);
+	snprintf(err->message, sizeof err->message, "%s: %s", prefix, old);
+}
+
+const char *aa_error_code_name(enum aa_error_code code)
+{
+	switch (code) {
+	case AA_OK: return "ok";
+	case AA_ERR_INVALID: return "invalid";
+	case AA_ERR_NOT_FOUND: return "not_found";
+	case AA_ERR_IO: return "io";
+	case AA_ERR_GPU: return "gpu";
+	case AA_ERR_LIMIT: return "limit";
+	case AA_ERR_CANCELLED: return "cancelled";
+	case AA_ERR_INTERNAL: return "internal";
+	}
+	return "unknown";
+}

@@ -1,0 +1,164 @@
+/* A job: what to render and compare (the spec, parsed from the job JSON of docs/job-format.md), and what
+ * came out (the result, serialised to results.json by engine/results/). */
+#ifndef AA_JOB_H
+#define AA_JOB_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <jansson.h>
+
+#include "error.h"
+#include "methods/method.h"
+#include "metrics/metrics.h"
+
+#define AA_MAX_METHODS 16
+#define AA_MAX_PASSES 16
+#define AA_MAX_MEMORY_ITEMS 16
+#define AA_LABEL_MAX 128
+
+struct aa_method_spec {
+	const struct aa_method *method;
+	struct aa_method_params params;
+	char label[AA_LABEL_MAX];  /* canonical text, e.g. "ssaa:samples=16" */
+};
+
+struct aa_job_spec {
+	char scene[1024];          /* name or path, as given */
+	char path[64];             /* camera path name: "default", "static" or a path of the scene */
+	int width, height;
+	int frames;
+	int first_frame;           /* frame index of the first rendered frame on the path (time = index/fps) */
+	int reference_samples;     /* N of the accumulated reference; N/2 is the convergence check */
+	int method_count;
+	struct aa_method_spec methods[AA_MAX_METHODS];
+	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
+	char name[128];            /* optional user label of the job */
+};
+
+/* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
+void aa_job_spec_defaults(struct aa_job_spec *spec);
+/* Parses and validates a job object; every error names its field ("methods[1]", "size"). */
+int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa_error *err);
+json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
+/* Shared limits (the daemon adds its own budget on top). */
+#define AA_MAX_SIZE 8192
+#define AA_MAX_FRAMES 100000
+#define AA_MAX_REFERENCE_SAMPLES 4096
+
+/* ---- results ---- */
+
+struct aa_pass_timing {
+	char name[32];
+	double gpu_ms;
+};
+
+struct aa_memory_item {
+	char name[48];
+	uint64_t bytes;
+};
+
+struct aa_frame_result {
+	int frame;                 /* frame index on the path */
+	int pass_count;
+	struct aa_pass_timing passes[AA_MAX_PASSES]; /* the method's own passes, in order */
+	double gpu_ms;             /* sum of passes */
+	double cpu_ms;             /* wall time of record + submit + wait for this method's frame */
+	struct aa_metrics metrics; /* against this frame's reference */
+};
+
+struct aa_method_result {
+	char label[AA_LABEL_MAX];
+	const struct aa_method *method;
+	struct aa_method_params params;
+	char path_taken[64];       /* e.g. "supersampled 4x4 grid", "hardware msaa", "virtual samples" */
+	int memory_count;
+	struct aa_memory_item memory[AA_MAX_MEMORY_ITEMS]; /* every image/buffer the method allocated */
+	uint64_t memory_bytes;     /* sum of memory[] */
+	int frame_count;
+	struct aa_frame_result *frames;
+};
+
+struct aa_reference_frame {
+	int frame;
+	double gpu_ms;             /* all N jittered renders + accumulation */
+	double cpu_ms;
+	bool convergence_identical;
+	double convergence_psnr;   /* PSNR (8-bit sRGB) of the N/2-sample vs the N-sample image; NAN if identical */
+	double convergence_mse;
+};
+
+struct aa_reference_result {
+	int samples;
+	char pattern[32];          /* "halton-2-3" */
+	uint64_t memory_bytes;
+	int frame_count;
+	struct aa_reference_frame *frames;
+};
+
+struct aa_plan_entry {
+	char pass[32];
+	char reason[160];
+	bool ran;
+};
+
+struct aa_job_result {
+	struct aa_job_spec spec;
+	char scene_name[64];
+	char scene_file[1024];
+	uint64_t scene_triangles;
+	char device_name[256];
+	char driver_info[256];
+	double timestamp_period_ns;
+	int plan_count;
+	struct aa_plan_entry plan[AA_MAX_PASSES];
+	struct aa_reference_result reference;
+	int method_count;
+	struct aa_method_result methods[AA_MAX_METHODS];
+	double wall_seconds;
+	char started_at[32];       /* ISO 8601 UTC */
+};
+
+void aa_job_result_free(struct aa_job_result *r);
+
+/* Per-method summary over frames (computed, never stored separately). */
+struct aa_method_summary {
+	double gpu_ms_median, gpu_ms_p90, gpu_ms_mean;
+	double cpu_ms_median;
+	double mse_mean;
+	double psnr_mean;          /* from mse_mean; NAN if every frame identical */
+	bool psnr_identical;
+	double ssim_mean;
+	int best_frame, worst_frame; /* by PSNR (identical counts as best) */
+	double best_psnr, worst_psnr;
+};
+void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summary *out);
+/* Median and p-th percentile (0..100, linear interpolation) of n values (the array is not modified). */
+double aa_percentile(const double *values, int n, double p);
+
+/* ---- events out ---- */
+
+enum aa_event_type {
+	AA_EVENT_JOB_STARTED,      /* result->plan, device and scene are filled */
+	AA_EVENT_REFERENCE_FRAME,  /* frame's reference done; image = reference image */
+	AA_EVENT_METHOD_FRAME,     /* method_index's frame done; image = its output; diff = |diff| x 4 */
+	AA_EVENT_PROGRESS,         /* done/total units of work */
+	AA_EVENT_JOB_FINISHED,
+};
+
+struct aa_event {
+	enum aa_event_type type;
+	const struct aa_job_result *result; /* the result so far */
+	int frame;                 /* frame index on the path (REFERENCE_FRAME, METHOD_FRAME) */
+	int frame_ordinal;         /* 0..frames-1 */
+	int method_index;          /* METHOD_FRAME */
+	const struct aa_image_rgba8 *image;
+	const struct aa_image_rgba8 *diff;
+	int done, total;           /* PROGRESS */
+};
+
+/* Return non-zero to cancel the job. */
+typedef int (*aa_event_fn)(const struct aa_event *ev, void *user);
+
+#endif

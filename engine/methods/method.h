@@ -1,0 +1,84 @@
+/* An AA method: a name, its parameters and what it needs from the frame plan, plus four functions.
+ * One method per file in engine/methods/; methods_registry.c lists them. */
+#ifndef AA_METHOD_H
+#define AA_METHOD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "../error.h"
+
+#define AA_MAX_PARAMS 8
+
+enum aa_param_type { AA_PARAM_INT, AA_PARAM_FLOAT, AA_PARAM_ENUM, AA_PARAM_BOOL };
+
+struct aa_param_def {
+	const char *name;
+	enum aa_param_type type;
+	double def;                      /* default; for enums the index into choices */
+	double min, max;                 /* numeric range (inclusive) */
+	const int *allowed;              /* INT only: if not NULL, the only valid values, terminated by 0 */
+	const char *const *choices;      /* ENUM only: NULL-terminated names */
+	const char *help;
+};
+
+/* What a method asks of the frame plan (DESIGN.md rule 3). */
+enum aa_need {
+	AA_NEED_DEPTH = 1u << 0,
+	AA_NEED_VELOCITY = 1u << 1,
+	AA_NEED_IDS = 1u << 2,
+	AA_NEED_SUBSAMPLES = 1u << 3,
+	AA_NEED_HISTORY = 1u << 4,
+	AA_NEED_MSAA = 1u << 5,
+	AA_NEED_GBUFFER = 1u << 6,
+	AA_NEED_SUPERSAMPLED = 1u << 7,
+};
+
+/* Parsed parameter values, in the order of the method's params table (enums as indices). */
+struct aa_method_params {
+	double v[AA_MAX_PARAMS];
+};
+
+struct aa_renderer;       /* engine/renderer.h */
+struct aa_method_state;   /* private to each method */
+struct aa_frame_ctx;      /* engine/renderer.h: the frame being rendered */
+
+struct aa_method {
+	const char *name;
+	const char *summary;
+	const char *seed;                 /* the source document, e.g. "seed 001" */
+	const struct aa_param_def *params;
+	int param_count;
+	const char *main_param;           /* the parameter a bare number sets ("ssaa:16"), or NULL */
+	unsigned needs;                   /* AA_NEED_* bits, may depend on params: see needs_fn */
+	unsigned (*needs_fn)(const struct aa_method_params *p);
+
+	int (*create)(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_state **out,
+		      struct aa_error *err);
+	/* Renders frame ctx into the method's output (linear RGBA16F image of the frame size). */
+	int (*render)(struct aa_method_state *s, const struct aa_frame_ctx *ctx, struct aa_error *err);
+	void (*reset)(struct aa_method_state *s); /* camera cut: forget history */
+	void (*destroy)(struct aa_method_state *s);
+};
+
+extern const struct aa_method *const aa_methods[];
+extern const int aa_method_count;
+
+const struct aa_method *aa_method_find(const char *name);
+int aa_method_param_index(const struct aa_method *m, const char *name);
+
+/* Parses "name", "name:N" (main parameter) or "name:key=value,key=value". path names the field for
+ * errors (e.g. "methods[2]"). The label written is the canonical text ("ssaa:samples=16"). */
+int aa_method_parse(const char *text, const char *path, const struct aa_method **method,
+		    struct aa_method_params *params, struct aa_error *err);
+/* Sets one parameter from text, validating type, range and allowed values. */
+int aa_method_set_param(const struct aa_method *m, struct aa_method_params *params, const char *key,
+			const char *value, const char *path, struct aa_error *err);
+void aa_method_defaults(const struct aa_method *m, struct aa_method_params *params);
+/* "ssaa:16" style label with non-default parameters only ("none", "ssaa:samples=16"). */
+void aa_method_label(const struct aa_method *m, const struct aa_method_params *p, char *out, size_t size);
+/* Writes the value of parameter i as text ("16", "0.75", "high", "true"). */
+void aa_method_param_text(const struct aa_method *m, const struct aa_method_params *p, int i, char *out,
+			  size_t size);
+
+#endif

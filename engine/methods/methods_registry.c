@@ -1,0 +1,29 @@
+/* The list of AA methods: adding a method adds one line here. */
+#include <string.h>
+
+#include "method.h"
+
+extern const struct aa_method aa_method_none;
+extern const struct aa_method aa_method_ssaa;
+
+const struct aa_method *const aa_methods[] = {
+	&aa_method_none,
+	&aa_method_ssaa,
+};
+const int aa_method_count = (int)(sizeof aa_methods / sizeof aa_methods[0]);
+
+const struct aa_method *aa_method_find(const char *name)
+{
+	for (int i = 0; i < aa_method_count; i++)
+		if (strcmp(aa_methods[i]->name, name) == 0)
+			return aa_methods[i];
+	return NULL;
+}
+
+int aa_method_param_index(const struct aa_method *m, const char *name)
+{
+	for (int i = 0; i < m->param_count; i++)
+		if (strcmp(m->params[i].name, name) == 0)
+			return i;
+	return -1;
+}

@@ -1,0 +1,39 @@
+/* Image-quality metrics of a test image against a reference, computed on the CPU in double precision. */
+#ifndef AA_METRICS_H
+#define AA_METRICS_H
+
+#include <stdbool.h>
+
+#include "../image/image.h"
+
+/* The error-threshold curve (seed 002, Fig. 1): thresholds 0, 0.01, ..., 1.00 on luminance error. */
+#define AA_THRESHOLD_COUNT 101
+
+struct aa_metrics {
+	double mse;        /* mean over pixels and R,G,B of squared error, in 8-bit units (0..255) */
+	double rmsd;       /* sqrt(mse) */
+	double psnr;       /* 10 log10(255^2 / mse) dB; NAN when identical */
+	bool identical;    /* mse == 0 exactly: psnr is reported as null */
+	double snr;        /* 10 log10(signal power of reference / mse) dB; NAN when identical or no signal */
+	double ssim;       /* mean SSIM, Gaussian 11x11 sigma 1.5, K1 0.01, K2 0.03, L 255, averaged over R,G,B */
+	double max_abs;    /* largest |difference| over pixels and R,G,B, 8-bit units */
+	/* share (0..1) of pixels whose luminance error |Y(test) - Y(ref)| > threshold i/100, where Y is
+	 * Rec. 709 luma of the sRGB-encoded values scaled to [0,1]. */
+	double exceed[AA_THRESHOLD_COUNT];
+};
+
+/* Compares two 8-bit sRGB images of equal size (alpha ignored). Returns -1 with err on size mismatch. */
+int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
+		       struct aa_metrics *out, struct aa_error *err);
+
+/* Linear-float mode: MSE/PSNR on linear values with peak 1.0 (values are not clamped). */
+int aa_metrics_psnr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,
+			   double *mse, double *psnr, bool *identical, struct aa_error *err);
+
+/* PSNR of a mean MSE (for sequence means): NAN when mse == 0. */
+double aa_psnr_from_mse(double mse, double peak);
+
+/* SSIM alone, on one channel of doubles or on RGB(A)8 averaged over channels. */
+double aa_ssim_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test);
+
+#endif

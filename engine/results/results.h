@@ -1,0 +1,28 @@
+/* Stored results of a job: results.json (docs/results-format.md), per-frame PNGs and report.html. */
+#ifndef AA_RESULTS_H
+#define AA_RESULTS_H
+
+#include <jansson.h>
+
+#include "../job.h"
+
+/* Directory name of a method's images: the label with ':' -> '_', '=' -> '-', ',' -> '_'
+ * ("ssaa:samples=16" -> "ssaa_samples-16"). The reference uses "reference". */
+void aa_results_method_dirname(const char *label, char *out, size_t size);
+
+/* Image files of a job directory, relative to it:
+ *   frames/<dirname>/<NNNN>.png   method output (and frames/reference/<NNNN>.png)
+ *   diff/<dirname>/<NNNN>.png     |method - reference| x 4
+ * NNNN is the frame ordinal (0-based) with 4 digits. */
+void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size);
+/* Writes an image under dir at the relative path, creating directories. */
+int aa_results_write_image(const char *dir, const char *relpath, const struct aa_image_rgba8 *img,
+			   struct aa_error *err);
+
+json_t *aa_results_to_json(const struct aa_job_result *r);
+/* Writes dir/results.json atomically (temp file, fsync, rename). */
+int aa_results_write_json(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
+int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+
+#endif
