@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "job.h"
+#include "scene/scene.h"
 
 struct aa_engine;
 
@@ -26,5 +27,10 @@ const char *aa_engine_device_name(const struct aa_engine *engine);
  * results writer needs; free it with aa_job_result_free + free. */
 int aa_job_run(struct aa_engine *engine, const struct aa_job_spec *spec, aa_event_fn on_event, void *user,
 	       struct aa_job_result **result, struct aa_error *err);
+
+/* The same with a scene built in code (2D test patterns): spec->scene is only a label, the scene is
+ * borrowed, not freed. */
+int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, const struct aa_scene *scene,
+		     aa_event_fn on_event, void *user, struct aa_job_result **result, struct aa_error *err);
 
 #endif

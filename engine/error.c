@@ -23,13 +23,18 @@ void aa_error_prefix(struct aa_error *err, const char *fmt, ...)
 {
 	if (!err)
 		return;
-	char prefix[512], old[sizeof err->message];
+	char joined[sizeof err->message * 2];
 	va_list ap;
 	va_start(ap, fmt);
-	vsnprintf(prefix, sizeof prefix, fmt, ap);
+	int n = vsnprintf(joined, sizeof err->message, fmt, ap);
 	va_end(ap);
-	memcpy(old, err->message, sizeof old);
-	snprintf(err->message, sizeof err->message, "%s: %s", prefix, old);
+	if (n < 0)
+		return;
+	size_t len = strlen(joined);
+	snprintf(joined + len, sizeof joined - len, ": %s", err->message);
+	/* the combined text is cut to the message size, keeping the prefix */
+	memcpy(err->message, joined, sizeof err->message - 1);
+	err->message[sizeof err->message - 1] = 0;
 }
 
 const char *aa_error_code_name(enum aa_error_code code)

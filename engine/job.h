@@ -21,7 +21,7 @@
 struct aa_method_spec {
 	const struct aa_method *method;
 	struct aa_method_params params;
-	char label[AA_LABEL_MAX];  /* canonical text, e.g. "ssaa:samples=16" */
+	char label[AA_LABEL_MAX];  /* canonical text (aa_method_label), e.g. "ssaa", "ssaa:samples=4" */
 };
 
 struct aa_job_spec {
@@ -42,6 +42,8 @@ void aa_job_spec_defaults(struct aa_job_spec *spec);
 /* Parses and validates a job object; every error names its field ("methods[1]", "size"). */
 int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa_error *err);
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
+/* Parses "WIDTHxHEIGHT" ("640x360"), each 1..AA_MAX_SIZE; errors have path "size" (the CLI's --size). */
+int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err);
 /* Shared limits (the daemon adds its own budget on top). */
 #define AA_MAX_SIZE 8192
 #define AA_MAX_FRAMES 100000
@@ -66,6 +68,7 @@ struct aa_frame_result {
 	double gpu_ms;             /* sum of passes */
 	double cpu_ms;             /* wall time of record + submit + wait for this method's frame */
 	struct aa_metrics metrics; /* against this frame's reference */
+	long nonfinite;            /* NaN/Inf values found in the method's float output (must be 0) */
 };
 
 struct aa_method_result {
@@ -87,6 +90,7 @@ struct aa_reference_frame {
 	bool convergence_identical;
 	double convergence_psnr;   /* PSNR (8-bit sRGB) of the N/2-sample vs the N-sample image; NAN if identical */
 	double convergence_mse;
+	long nonfinite;            /* NaN/Inf values in the accumulated float image (must be 0) */
 };
 
 struct aa_reference_result {
@@ -153,7 +157,8 @@ struct aa_event {
 	int frame;                 /* frame index on the path (REFERENCE_FRAME, METHOD_FRAME) */
 	int frame_ordinal;         /* 0..frames-1 */
 	int method_index;          /* METHOD_FRAME */
-	const struct aa_image_rgba8 *image;
+	const struct aa_image_rgba8 *image;  /* 8-bit sRGB, as written to PNG and scored */
+	const struct aa_image_rgbaf *linear; /* the same frame in linear float, before encoding */
 	const struct aa_image_rgba8 *diff;
 	int done, total;           /* PROGRESS */
 };

@@ -7,7 +7,8 @@
 
 #include "../error.h"
 
-/* 8-bit RGBA, sRGB-encoded, rows top to bottom, tightly packed. */
+/* 8-bit RGBA, sRGB-encoded, straight (not premultiplied) alpha as PNG stores it, rows top to bottom,
+ * tightly packed. */
 struct aa_image_rgba8 {
 	int width, height;
 	uint8_t *pixels; /* width*height*4 */

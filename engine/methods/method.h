@@ -42,6 +42,7 @@ struct aa_method_params {
 struct aa_renderer;       /* engine/renderer.h */
 struct aa_method_state;   /* private to each method */
 struct aa_frame_ctx;      /* engine/renderer.h: the frame being rendered */
+struct aa_method_result;  /* engine/job.h: create() records path_taken and every allocation there */
 
 struct aa_method {
 	const char *name;
@@ -53,10 +54,11 @@ struct aa_method {
 	unsigned needs;                   /* AA_NEED_* bits, may depend on params: see needs_fn */
 	unsigned (*needs_fn)(const struct aa_method_params *p);
 
-	int (*create)(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_state **out,
-		      struct aa_error *err);
-	/* Renders frame ctx into the method's output (linear RGBA16F image of the frame size). */
-	int (*render)(struct aa_method_state *s, const struct aa_frame_ctx *ctx, struct aa_error *err);
+	int (*create)(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
+		      struct aa_method_state **out, struct aa_error *err);
+	/* Records frame ctx into ctx->cmd, timing each of its passes with ctx->timer, and sets ctx->output
+	 * to its result: a linear RGBA16F image of the frame size. */
+	int (*render)(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err);
 	void (*reset)(struct aa_method_state *s); /* camera cut: forget history */
 	void (*destroy)(struct aa_method_state *s);
 };
@@ -67,15 +69,28 @@ extern const int aa_method_count;
 const struct aa_method *aa_method_find(const char *name);
 int aa_method_param_index(const struct aa_method *m, const char *name);
 
-/* Parses "name", "name:N" (main parameter) or "name:key=value,key=value". path names the field for
- * errors (e.g. "methods[2]"). The label written is the canonical text ("ssaa:samples=16"). */
+/* Longest method text ("name:key=value,...") the parser accepts, in bytes including the NUL. */
+#define AA_METHOD_TEXT_MAX 512
+
+/* Parses "name", "name:N" (main parameter) or "name:key=value,key=value"; whitespace around items is
+ * ignored. path names the field for errors (e.g. "methods[2]") and goes to err->path. Unknown method:
+ * AA_ERR_NOT_FOUND; anything else: AA_ERR_INVALID. aa_method_label gives the canonical text. */
 int aa_method_parse(const char *text, const char *path, const struct aa_method **method,
 		    struct aa_method_params *params, struct aa_error *err);
+/* The part after ':' for a known method m ("16", "preset=39,subpix=0.75"): resets params to m's
+ * defaults, then sets each item; refuses unknown keys, bad values, duplicates and bare values for
+ * methods without a main parameter. aa_method_parse uses it; tests call it with their own tables. */
+int aa_method_parse_params(const struct aa_method *m, const char *list, const char *path,
+			   struct aa_method_params *params, struct aa_error *err);
+/* "none, ssaa, ...": the registry's method names, for messages. */
+void aa_method_list_names(char *out, size_t size);
 /* Sets one parameter from text, validating type, range and allowed values. */
 int aa_method_set_param(const struct aa_method *m, struct aa_method_params *params, const char *key,
 			const char *value, const char *path, struct aa_error *err);
 void aa_method_defaults(const struct aa_method *m, struct aa_method_params *params);
-/* "ssaa:16" style label with non-default parameters only ("none", "ssaa:samples=16"). */
+/* Canonical label: the name; then the main parameter's value, always ("ssaa:16", "msaa:4"); then the other
+ * non-default parameters in table order as key=value joined by ',' ("fxaa:preset=12,subpix=0.5",
+ * "msaa:8,resolve=box"). The label parses back to the same parameters. */
 void aa_method_label(const struct aa_method *m, const struct aa_method_params *p, char *out, size_t size);
 /* Writes the value of parameter i as text ("16", "0.75", "high", "true"). */
 void aa_method_param_text(const struct aa_method *m, const struct aa_method_params *p, int i, char *out,

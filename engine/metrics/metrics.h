@@ -33,7 +33,11 @@ int aa_metrics_psnr_linear(const struct aa_image_rgbaf *ref, const struct aa_ima
 /* PSNR of a mean MSE (for sequence means): NAN when mse == 0. */
 double aa_psnr_from_mse(double mse, double peak);
 
-/* SSIM alone, on one channel of doubles or on RGB(A)8 averaged over channels. */
+/* SSIM alone, on RGB(A)8 averaged over R,G,B (L = 255) or on one channel of doubles with the given
+ * data range. Matches skimage.metrics.structural_similarity(gaussian_weights=True, sigma=1.5,
+ * use_sample_covariance=False); images smaller than 11x11, which skimage refuses, are averaged over
+ * every pixel with reflected borders. NaN on size mismatch or when out of memory. */
 double aa_ssim_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test);
+double aa_ssim_channel(const double *ref, const double *test, int width, int height, double data_range);
 
 #endif

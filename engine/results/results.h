@@ -22,6 +22,9 @@ int aa_results_write_image(const char *dir, const char *relpath, const struct aa
 json_t *aa_results_to_json(const struct aa_job_result *r);
 /* Writes dir/results.json atomically (temp file, fsync, rename). */
 int aa_results_write_json(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* Writes dir/name atomically: a temp file in dir, fsync, rename over name, fsync dir. */
+int aa_results_write_file_atomic(const char *dir, const char *name, const char *data, size_t size,
+				 struct aa_error *err);
 /* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
 int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
 

@@ -13,6 +13,21 @@
 
 #define AA_NAME_MAX 64
 
+/* Limits on scene files (docs/scene-format.md): a bad or hostile file fails with AA_ERR_LIMIT instead of
+ * exhausting memory or the CPU rasteriser. */
+#define AA_SCENE_MAX_FILE_BYTES (4u << 20)      /* scene JSON text */
+#define AA_SCENE_MAX_TRIANGLES 1000000u         /* drawn per scene (each object counts its mesh) */
+#define AA_SCENE_MAX_OBJECTS 4096
+#define AA_SCENE_MAX_MESHES 256
+#define AA_SCENE_MAX_MATERIALS 256
+#define AA_SCENE_MAX_TEXTURES 32
+#define AA_SCENE_MAX_LIGHTS 8
+#define AA_SCENE_MAX_PATHS 32
+#define AA_SCENE_MAX_KEYS 256                   /* keys per camera path */
+#define AA_TEXTURE_MAX_SIZE 4096                /* width or height, texels */
+#define AA_SCENE_MAX_TEXTURE_BYTES (256u << 20) /* all textures with their mips */
+#define AA_MESH_FILE_MAX_BYTES (64u << 20)
+
 struct aa_vertex {
 	float position[3];
 	float normal[3];
@@ -125,6 +140,7 @@ struct aa_camera_path {
 	vec3 center;            /* orbit */
 	float degrees;          /* orbit: degrees over `duration`; pan: yaw over `duration` */
 	float distance;         /* dolly */
+	float catmull_alpha;    /* keyframes: 0.5 centripetal (default), 0 uniform Catmull-Rom */
 };
 
 struct aa_scene {
@@ -161,7 +177,8 @@ int aa_scene_load_string(const char *json_text, const char *display_name, const 
 			 struct aa_scene **out, struct aa_error *err);
 void aa_scene_free(struct aa_scene *scene);
 
-/* Finds a camera path by name: "default" is paths[0]; "static" is paths[0]'s first camera held. */
+/* Finds a camera path by name: "default" is paths[0]; "static" is paths[0]'s first camera held (the
+ * caller passes hold_first = true to aa_camera_path_eval for "static"). NULL when there is no such path. */
 const struct aa_camera_path *aa_scene_find_path(const struct aa_scene *scene, const char *name);
 
 /* Evaluates a path at time t. *cut is set when a cut key lies in (t_prev, t] (t_prev < 0: no cut). */

@@ -1,0 +1,104 @@
+/* Terminal output of the client: the cost-vs-accuracy table, the progress bar, and --methods splitting. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "client.h"
+
+static void format_psnr(double psnr, bool identical, char *out, size_t size)
+{
+	if (identical)
+		snprintf(out, size, "identical");
+	else if (isnan(psnr))
+		snprintf(out, size, "-");
+	else
+		snprintf(out, size, "%.2f", psnr);
+}
+
+void aa_print_table(const struct aa_job_result *r, FILE *out)
+{
+	double conv_mse = 0;
+	for (int f = 0; f < r->reference.frame_count; f++)
+		conv_mse += r->reference.frames[f].convergence_mse;
+	conv_mse /= r->reference.frame_count > 0 ? r->reference.frame_count : 1;
+	char conv[32];
+	format_psnr(aa_psnr_from_mse(conv_mse, 255.0), conv_mse == 0.0, conv, sizeof conv);
+	fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples (convergence %d vs %d: "
+		"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
+		r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
+		r->reference.samples, conv, r->device_name);
+	fprintf(out, "%-24s %12s %10s %9s %10s %8s\n", "method", "GPU ms/frame", "p90 ms", "MB", "PSNR dB",
+		"SSIM");
+	for (int i = 0; i < r->method_count; i++) {
+		const struct aa_method_result *m = &r->methods[i];
+		struct aa_method_summary s;
+		aa_method_summarize(m, &s);
+		char psnr[32];
+		format_psnr(s.psnr_mean, s.psnr_identical, psnr, sizeof psnr);
+		fprintf(out, "%-24s %12.2f %10.2f %9.1f %10s %8.4f\n", m->label, s.gpu_ms_median, s.gpu_ms_p90,
+			m->memory_bytes / (1024.0 * 1024.0), psnr, s.ssim_mean);
+	}
+}
+
+static int progress_width;
+
+void aa_progress_update(int done, int total, const char *what)
+{
+	const int bar = 30;
+	int filled = total > 0 ? done * bar / total : 0;
+	char line[128];
+	int n = snprintf(line, sizeof line, "\r%s [", what);
+	for (int i = 0; i < bar; i++)
+		line[n++] = i < filled ? '#' : '.';
+	n += snprintf(line + n, sizeof line - (size_t)n, "] %d/%d", done, total);
+	progress_width = n;
+	fputs(line, stderr);
+	fflush(stderr);
+}
+
+void aa_progress_finish(void)
+{
+	if (progress_width) {
+		fprintf(stderr, "\r%*s\r", progress_width, "");
+		progress_width = 0;
+	}
+}
+
+void aa_free_strings(char **v, int count)
+{
+	for (int i = 0; i < count; i++)
+		free(v[i]);
+	free(v);
+}
+
+int aa_split_methods(const char *text, char ***out, int *count)
+{
+	char *copy = strdup(text);
+	char **list = calloc(strlen(text) + 1, sizeof *list);
+	int n = 0;
+	if (!copy || !list) {
+		free(copy);
+		free(list);
+		return -1;
+	}
+	char *save = NULL;
+	for (char *tok = strtok_r(copy, ", \t", &save); tok; tok = strtok_r(NULL, ", \t", &save)) {
+		bool continues = n > 0 && strchr(tok, '=') && !strchr(tok, ':');
+		if (continues) {
+			size_t len = strlen(list[n - 1]) + strlen(tok) + 2;
+			char *joined = malloc(len);
+			if (!joined)
+				break;
+			snprintf(joined, len, "%s,%s", list[n - 1], tok);
+			free(list[n - 1]);
+			list[n - 1] = joined;
+		} else {
+			list[n++] = strdup(tok);
+		}
+	}
+	free(copy);
+	*out = list;
+	*count = n;
+	return 0;
+}

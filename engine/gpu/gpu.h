@@ -1,0 +1,181 @@
+/* The GPU layer: Vulkan instance/device on whatever ICD is present, images, buffers, render passes,
+ * pipelines, timestamp queries and readback, behind a few well-named functions. Methods speak in images
+ * and passes; the Vulkan details stay here. */
+#ifndef AA_GPU_H
+#define AA_GPU_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <vulkan/vulkan.h>
+
+#include "../error.h"
+
+struct aa_gpu {
+	VkInstance instance;
+	VkPhysicalDevice physical;
+	VkDevice device;
+	VkQueue queue;
+	uint32_t queue_family;
+	VkCommandPool command_pool;
+	VkPhysicalDeviceProperties properties;
+	VkPhysicalDeviceMemoryProperties memory_properties;
+	VkDebugUtilsMessengerEXT messenger;
+	bool validation;
+	int validation_errors;
+	uint32_t timestamp_valid_bits;
+	double timestamp_period_ns;
+	VkSampleCountFlags color_sample_counts; /* supported for RGBA16F + D32F attachments */
+	char driver_info[256];
+	VkSampler sampler_nearest, sampler_linear, sampler_shadow;
+};
+
+/* device_select: NULL/"" = first device (or $AALAB_DEVICE), a decimal index, or a substring of the
+ * device name. validation: enable VK_LAYER_KHRONOS_validation when it is installed. */
+int aa_gpu_create(struct aa_gpu *gpu, const char *device_select, bool validation, struct aa_error *err);
+void aa_gpu_destroy(struct aa_gpu *gpu);
+
+struct aa_gpu_image {
+	VkImage image;
+	VkDeviceMemory memory;
+	VkImageView view;
+	VkFormat format;
+	VkImageAspectFlags aspect;
+	int width, height;
+	uint32_t samples, mip_levels;
+	VkImageLayout layout; /* tracked by aa_gpu_image_barrier */
+	uint64_t bytes;       /* allocation size */
+};
+
+int aa_gpu_image_create(struct aa_gpu *gpu, struct aa_gpu_image *img, int width, int height, VkFormat format,
+			VkImageUsageFlags usage, uint32_t samples, uint32_t mip_levels, struct aa_error *err);
+void aa_gpu_image_destroy(struct aa_gpu *gpu, struct aa_gpu_image *img);
+/* Transitions the whole image to new_layout, with a full read/write dependency (simple and correct;
+ * lavapipe gains nothing from finer stages). */
+void aa_gpu_image_barrier(VkCommandBuffer cmd, struct aa_gpu_image *img, VkImageLayout new_layout);
+/* Execution + memory barrier for everything before vs. everything after (compute <-> graphics). */
+void aa_gpu_full_barrier(VkCommandBuffer cmd);
+
+struct aa_gpu_buffer {
+	VkBuffer buffer;
+	VkDeviceMemory memory;
+	VkDeviceSize size;
+	void *mapped; /* host-visible buffers stay mapped */
+};
+
+int aa_gpu_buffer_create(struct aa_gpu *gpu, struct aa_gpu_buffer *buf, VkDeviceSize size,
+			 VkBufferUsageFlags usage, bool host_visible, struct aa_error *err);
+void aa_gpu_buffer_destroy(struct aa_gpu *gpu, struct aa_gpu_buffer *buf);
+/* Creates a device-local buffer filled with data (through a staging copy). */
+int aa_gpu_buffer_upload(struct aa_gpu *gpu, struct aa_gpu_buffer *buf, const void *data, VkDeviceSize size,
+			 VkBufferUsageFlags usage, struct aa_error *err);
+/* Uploads mip levels of an RGBA8 image (levels[i] tightly packed) and leaves it SHADER_READ_ONLY. */
+int aa_gpu_image_upload_rgba8(struct aa_gpu *gpu, struct aa_gpu_image *img, const uint8_t *const *levels,
+			      struct aa_error *err);
+
+/* One-shot command buffers. */
+int aa_gpu_begin(struct aa_gpu *gpu, VkCommandBuffer *cmd, struct aa_error *err);
+int aa_gpu_submit_wait(struct aa_gpu *gpu, VkCommandBuffer cmd, struct aa_error *err); /* frees cmd */
+
+/* Readback: records a copy of a single-sample colour image into a host buffer (created/grown as
+ * needed); after submit_wait the pixels are in buf->mapped, tightly packed. */
+int aa_gpu_record_readback(struct aa_gpu *gpu, VkCommandBuffer cmd, struct aa_gpu_image *img,
+			   struct aa_gpu_buffer *buf, struct aa_error *err);
+uint32_t aa_gpu_format_bytes(VkFormat format);
+
+/* Render passes and framebuffers: `color_count` colour attachments (cleared or loaded), an optional
+ * depth attachment (cleared), all with `samples` samples; optional single-sample resolve targets for the
+ * colour attachments when samples > 1. Final layouts: colour -> SHADER_READ_ONLY_OPTIMAL (loaded colour
+ * attachments start and stay COLOR_ATTACHMENT_OPTIMAL, for accumulation),
+ * depth -> DEPTH_STENCIL_ATTACHMENT_OPTIMAL (or SHADER_READ_ONLY if depth_readable). */
+struct aa_gpu_pass_desc {
+	int color_count;
+	VkFormat color_formats[4];
+	bool color_load[4];      /* keep existing contents instead of clearing */
+	VkFormat depth_format;   /* VK_FORMAT_UNDEFINED: none */
+	bool depth_readable;
+	uint32_t samples;
+	bool resolve;
+};
+int aa_gpu_render_pass_create(struct aa_gpu *gpu, const struct aa_gpu_pass_desc *desc, VkRenderPass *out,
+			      struct aa_error *err);
+int aa_gpu_framebuffer_create(struct aa_gpu *gpu, VkRenderPass pass, struct aa_gpu_image *const *attachments,
+			      int count, VkFramebuffer *out, struct aa_error *err);
+/* Begins a render pass over the framebuffer's full area; clear values in attachment order. Callers set
+ * the images' tracked layouts to the pass's final layouts after vkCmdEndRenderPass. */
+void aa_gpu_begin_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer fb, int width, int height,
+		       const VkClearValue *clears, int clear_count);
+
+/* Pipelines. Shaders are SPIR-V words embedded at build time (shader_table.c). */
+struct aa_shader_code {
+	const char *name;
+	const uint32_t *words;
+	size_t size; /* bytes */
+};
+const struct aa_shader_code *aa_shader_find(const char *name); /* "scene.vert" */
+
+enum aa_blend { AA_BLEND_NONE, AA_BLEND_ADD };
+enum aa_vertex_layout { AA_VERTEX_NONE /* full-screen triangle from gl_VertexIndex */, AA_VERTEX_SCENE };
+
+struct aa_gpu_graphics_desc {
+	const char *vert, *frag;     /* shader names; frag may be NULL (depth only) */
+	enum aa_vertex_layout vertex_layout;
+	VkRenderPass render_pass;
+	int color_count;
+	uint32_t samples;
+	bool depth_test, depth_write; /* reversed-Z: compare GREATER_OR_EQUAL */
+	VkCullModeFlags cull;
+	enum aa_blend blend;
+	float depth_bias_constant, depth_bias_slope;
+	VkPipelineLayout layout;
+	const VkSpecializationInfo *frag_specialization;
+};
+
+struct aa_gpu_pipeline {
+	VkPipeline pipeline;
+	VkPipelineLayout layout;      /* owned when created by aa_gpu_layout_create */
+	VkDescriptorSetLayout set_layout;
+	VkPipelineBindPoint bind_point;
+};
+
+/* A pipeline layout with one descriptor set of `binding_count` bindings (types[i], counts[i] descriptors,
+ * visible to all stages) and push constants of push_size bytes (all stages). */
+int aa_gpu_layout_create(struct aa_gpu *gpu, const VkDescriptorType *types, const uint32_t *counts,
+			 int binding_count, uint32_t push_size, struct aa_gpu_pipeline *out, struct aa_error *err);
+int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_graphics_desc *desc,
+				    struct aa_gpu_pipeline *p, struct aa_error *err);
+int aa_gpu_compute_pipeline_create(struct aa_gpu *gpu, const char *comp, struct aa_gpu_pipeline *p,
+				   struct aa_error *err);
+void aa_gpu_pipeline_destroy(struct aa_gpu *gpu, struct aa_gpu_pipeline *p);
+
+/* Descriptor sets come from one pool per owner; write helpers take a binding and the resource. */
+int aa_gpu_descriptor_pool_create(struct aa_gpu *gpu, uint32_t max_sets, VkDescriptorPool *out,
+				  struct aa_error *err);
+int aa_gpu_descriptor_set_alloc(struct aa_gpu *gpu, VkDescriptorPool pool, const struct aa_gpu_pipeline *p,
+				VkDescriptorSet *out, struct aa_error *err);
+void aa_gpu_write_image(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, uint32_t element,
+			VkDescriptorType type, VkSampler sampler, const struct aa_gpu_image *img,
+			VkImageLayout layout);
+void aa_gpu_write_buffer(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+			 const struct aa_gpu_buffer *buf);
+
+/* Timestamps around passes. Start stamps are written at BOTTOM_OF_PIPE followed by an execution barrier,
+ * because lavapipe only flushes queued work before non-TOP_OF_PIPE stamps (lavapipe-costs.md, trap 1). */
+#define AA_GPU_TIMER_MAX 512
+struct aa_gpu_timer {
+	VkQueryPool pool;
+	uint32_t used;
+	struct { char name[32]; uint32_t begin, end; } spans[AA_GPU_TIMER_MAX / 2];
+	int span_count;
+};
+int aa_gpu_timer_create(struct aa_gpu *gpu, struct aa_gpu_timer *t, struct aa_error *err);
+void aa_gpu_timer_destroy(struct aa_gpu *gpu, struct aa_gpu_timer *t);
+void aa_gpu_timer_reset(VkCommandBuffer cmd, struct aa_gpu_timer *t);   /* before the first span */
+int aa_gpu_timer_begin(VkCommandBuffer cmd, struct aa_gpu_timer *t, const char *name); /* returns span */
+void aa_gpu_timer_end(VkCommandBuffer cmd, struct aa_gpu_timer *t, int span);
+/* After the command buffer completed: ms of each span (ms has span_count entries). */
+int aa_gpu_timer_read(struct aa_gpu *gpu, struct aa_gpu_timer *t, double *ms, struct aa_error *err);
+
+double aa_now_ms(void); /* CLOCK_MONOTONIC */
+
+#endif

@@ -1,0 +1,262 @@
+/* Pipelines, pipeline layouts and descriptor sets. Every pipeline uses dynamic viewport/scissor so one
+ * pipeline serves any target size. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu.h"
+#include "../scene/scene.h"
+
+static int make_module(struct aa_gpu *gpu, const char *name, VkShaderModule *out, struct aa_error *err)
+{
+	const struct aa_shader_code *code = aa_shader_find(name);
+	if (!code)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "shader '%s' is not embedded in this build", name);
+	VkShaderModuleCreateInfo ci = {
+		.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+		.codeSize = code->size,
+		.pCode = code->words,
+	};
+	if (vkCreateShaderModule(gpu->device, &ci, NULL, out) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateShaderModule failed for %s", name);
+	return 0;
+}
+
+int aa_gpu_layout_create(struct aa_gpu *gpu, const VkDescriptorType *types, const uint32_t *counts,
+			 int binding_count, uint32_t push_size, struct aa_gpu_pipeline *out, struct aa_error *err)
+{
+	memset(out, 0, sizeof *out);
+	VkDescriptorSetLayoutBinding b[16];
+	for (int i = 0; i < binding_count && i < 16; i++)
+		b[i] = (VkDescriptorSetLayoutBinding){
+			.binding = (uint32_t)i,
+			.descriptorType = types[i],
+			.descriptorCount = counts ? counts[i] : 1,
+			.stageFlags = VK_SHADER_STAGE_ALL,
+		};
+	VkDescriptorSetLayoutCreateInfo sci = {
+		.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+		.bindingCount = (uint32_t)binding_count,
+		.pBindings = b,
+	};
+	if (vkCreateDescriptorSetLayout(gpu->device, &sci, NULL, &out->set_layout) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateDescriptorSetLayout failed");
+	VkPushConstantRange pr = {VK_SHADER_STAGE_ALL, 0, push_size};
+	VkPipelineLayoutCreateInfo lci = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+		.setLayoutCount = 1,
+		.pSetLayouts = &out->set_layout,
+		.pushConstantRangeCount = push_size ? 1 : 0,
+		.pPushConstantRanges = &pr,
+	};
+	if (vkCreatePipelineLayout(gpu->device, &lci, NULL, &out->layout) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreatePipelineLayout failed");
+	return 0;
+}
+
+int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_graphics_desc *d,
+				    struct aa_gpu_pipeline *p, struct aa_error *err)
+{
+	VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
+	if (make_module(gpu, d->vert, &vs, err))
+		return -1;
+	if (d->frag && make_module(gpu, d->frag, &fs, err)) {
+		vkDestroyShaderModule(gpu->device, vs, NULL);
+		return -1;
+	}
+	VkPipelineShaderStageCreateInfo stages[2] = {
+		{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
+		 .module = vs, .pName = "main"},
+		{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
+		 .module = fs, .pName = "main", .pSpecializationInfo = d->frag_specialization},
+	};
+	VkVertexInputBindingDescription vb = {0, sizeof(struct aa_vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+	VkVertexInputAttributeDescription va[3] = {
+		{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(struct aa_vertex, position)},
+		{1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(struct aa_vertex, normal)},
+		{2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(struct aa_vertex, uv)},
+	};
+	bool scene = d->vertex_layout == AA_VERTEX_SCENE;
+	VkPipelineVertexInputStateCreateInfo vi = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+		.vertexBindingDescriptionCount = scene ? 1 : 0,
+		.pVertexBindingDescriptions = &vb,
+		.vertexAttributeDescriptionCount = scene ? 3 : 0,
+		.pVertexAttributeDescriptions = va,
+	};
+	VkPipelineInputAssemblyStateCreateInfo ia = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
+		.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+	};
+	VkPipelineViewportStateCreateInfo vp = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+		.viewportCount = 1,
+		.scissorCount = 1,
+	};
+	bool bias = d->depth_bias_constant != 0.0f || d->depth_bias_slope != 0.0f;
+	VkPipelineRasterizationStateCreateInfo rs = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+		.polygonMode = VK_POLYGON_MODE_FILL,
+		.cullMode = d->cull,
+		.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+		.depthBiasEnable = bias,
+		.depthBiasConstantFactor = d->depth_bias_constant,
+		.depthBiasSlopeFactor = d->depth_bias_slope,
+		.lineWidth = 1.0f,
+	};
+	VkPipelineMultisampleStateCreateInfo ms = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+		.rasterizationSamples = (VkSampleCountFlagBits)(d->samples ? d->samples : 1),
+	};
+	VkPipelineDepthStencilStateCreateInfo ds = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
+		.depthTestEnable = d->depth_test,
+		.depthWriteEnable = d->depth_write,
+		.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, /* reversed-Z */
+	};
+	VkPipelineColorBlendAttachmentState cb[4];
+	for (int i = 0; i < 4; i++)
+		cb[i] = (VkPipelineColorBlendAttachmentState){
+			.blendEnable = d->blend == AA_BLEND_ADD,
+			.srcColorBlendFactor = VK_BLEND_FACTOR_ONE,
+			.dstColorBlendFactor = VK_BLEND_FACTOR_ONE,
+			.colorBlendOp = VK_BLEND_OP_ADD,
+			.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
+			.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
+			.alphaBlendOp = VK_BLEND_OP_ADD,
+			.colorWriteMask = 0xf,
+		};
+	VkPipelineColorBlendStateCreateInfo blend = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+		.attachmentCount = (uint32_t)d->color_count,
+		.pAttachments = cb,
+	};
+	VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+	VkPipelineDynamicStateCreateInfo dy = {
+		.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+		.dynamicStateCount = 2,
+		.pDynamicStates = dyn,
+	};
+	VkGraphicsPipelineCreateInfo ci = {
+		.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+		.stageCount = d->frag ? 2 : 1,
+		.pStages = stages,
+		.pVertexInputState = &vi,
+		.pInputAssemblyState = &ia,
+		.pViewportState = &vp,
+		.pRasterizationState = &rs,
+		.pMultisampleState = &ms,
+		.pDepthStencilState = &ds,
+		.pColorBlendState = &blend,
+		.pDynamicState = &dy,
+		.layout = d->layout,
+		.renderPass = d->render_pass,
+	};
+	VkResult vr = vkCreateGraphicsPipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, &p->pipeline);
+	vkDestroyShaderModule(gpu->device, vs, NULL);
+	if (fs)
+		vkDestroyShaderModule(gpu->device, fs, NULL);
+	if (vr != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "cannot create the %s/%s pipeline (VkResult %d)", d->vert,
+				    d->frag ? d->frag : "-", vr);
+	p->bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
+	return 0;
+}
+
+int aa_gpu_compute_pipeline_create(struct aa_gpu *gpu, const char *comp, struct aa_gpu_pipeline *p,
+				   struct aa_error *err)
+{
+	VkShaderModule cs;
+	if (make_module(gpu, comp, &cs, err))
+		return -1;
+	VkComputePipelineCreateInfo ci = {
+		.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+		.stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+			  .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = cs, .pName = "main"},
+		.layout = p->layout,
+	};
+	VkResult vr = vkCreateComputePipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, &p->pipeline);
+	vkDestroyShaderModule(gpu->device, cs, NULL);
+	if (vr != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "cannot create the %s pipeline (VkResult %d)", comp, vr);
+	p->bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
+	return 0;
+}
+
+void aa_gpu_pipeline_destroy(struct aa_gpu *gpu, struct aa_gpu_pipeline *p)
+{
+	if (!gpu->device)
+		return;
+	if (p->pipeline)
+		vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+	if (p->layout)
+		vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+	if (p->set_layout)
+		vkDestroyDescriptorSetLayout(gpu->device, p->set_layout, NULL);
+	memset(p, 0, sizeof *p);
+}
+
+int aa_gpu_descriptor_pool_create(struct aa_gpu *gpu, uint32_t max_sets, VkDescriptorPool *out,
+				  struct aa_error *err)
+{
+	VkDescriptorPoolSize sizes[] = {
+		{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, max_sets * 24},
+		{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, max_sets * 2},
+		{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, max_sets * 4},
+		{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, max_sets * 4},
+	};
+	VkDescriptorPoolCreateInfo ci = {
+		.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+		.maxSets = max_sets,
+		.poolSizeCount = 4,
+		.pPoolSizes = sizes,
+	};
+	if (vkCreateDescriptorPool(gpu->device, &ci, NULL, out) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateDescriptorPool failed");
+	return 0;
+}
+
+int aa_gpu_descriptor_set_alloc(struct aa_gpu *gpu, VkDescriptorPool pool, const struct aa_gpu_pipeline *p,
+				VkDescriptorSet *out, struct aa_error *err)
+{
+	VkDescriptorSetAllocateInfo ai = {
+		.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+		.descriptorPool = pool,
+		.descriptorSetCount = 1,
+		.pSetLayouts = &p->set_layout,
+	};
+	if (vkAllocateDescriptorSets(gpu->device, &ai, out) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkAllocateDescriptorSets failed");
+	return 0;
+}
+
+void aa_gpu_write_image(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, uint32_t element,
+			VkDescriptorType type, VkSampler sampler, const struct aa_gpu_image *img,
+			VkImageLayout layout)
+{
+	VkDescriptorImageInfo ii = {sampler, img->view, layout};
+	VkWriteDescriptorSet w = {
+		.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+		.dstSet = set,
+		.dstBinding = binding,
+		.dstArrayElement = element,
+		.descriptorCount = 1,
+		.descriptorType = type,
+		.pImageInfo = &ii,
+	};
+	vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
+}
+
+void aa_gpu_write_buffer(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+			 const struct aa_gpu_buffer *buf)
+{
+	VkDescriptorBufferInfo bi = {buf->buffer, 0, VK_WHOLE_SIZE};
+	VkWriteDescriptorSet w = {
+		.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+		.dstSet = set,
+		.dstBinding = binding,
+		.descriptorCount = 1,
+		.descriptorType = type,
+		.pBufferInfo = &bi,
+	};
+	vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
+}

@@ -1,0 +1,315 @@
+/* Runs a job: for every frame on the camera path, the reference, then every method, then metrics against
+ * the reference, reported as events (DESIGN.md, "The flow of one job"). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "aa.h"
+#include "engine_internal.h"
+#include "frame_plan.h"
+#include "reference/reference.h"
+#include "renderer.h"
+
+static float half_to_float(uint16_t h)
+{
+	uint32_t sign = (uint32_t)(h >> 15) << 31, exp = (h >> 10) & 0x1f, mant = h & 0x3ff, bits;
+	if (exp == 0) {
+		if (mant == 0) {
+			bits = sign;
+		} else { /* subnormal: normalise */
+			exp = 127 - 15 + 1;
+			while (!(mant & 0x400)) {
+				mant <<= 1;
+				exp--;
+			}
+			bits = sign | (exp << 23) | ((mant & 0x3ff) << 13);
+		}
+	} else if (exp == 31) {
+		bits = sign | 0x7f800000u | (mant << 13);
+	} else {
+		bits = sign | ((exp - 15 + 127) << 23) | (mant << 13);
+	}
+	float f;
+	memcpy(&f, &bits, sizeof f);
+	return f;
+}
+
+static long count_nonfinite(const struct aa_image_rgbaf *img)
+{
+	long n = 0;
+	size_t count = (size_t)img->width * img->height * 4;
+	for (size_t i = 0; i < count; i++)
+		n += !isfinite(img->pixels[i]);
+	return n;
+}
+
+/* |test - ref| x 4 per channel, as seed 002 shows errors. */
+static void diff_image(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
+		       struct aa_image_rgba8 *out)
+{
+	size_t n = (size_t)ref->width * ref->height;
+	for (size_t i = 0; i < n; i++) {
+		for (int c = 0; c < 3; c++) {
+			int d = abs((int)test->pixels[i * 4 + c] - (int)ref->pixels[i * 4 + c]) * 4;
+			out->pixels[i * 4 + c] = (uint8_t)(d > 255 ? 255 : d);
+		}
+		out->pixels[i * 4 + 3] = 255;
+	}
+}
+
+struct job_state {
+	struct aa_engine *engine;
+	const struct aa_job_spec *spec;
+	struct aa_scene *scene;          /* loaded here, freed at the end */
+	const struct aa_scene *borrowed; /* or given by the caller */
+	struct aa_renderer *renderer;
+	struct aa_reference reference;
+	struct aa_method_state *states[AA_MAX_METHODS];
+	struct aa_gpu_timer timer;
+	struct aa_gpu_buffer readback;
+	struct aa_image_rgbaf full, half, output;
+	struct aa_image_rgba8 ref8, half8, out8, diff8;
+	struct aa_job_result *result;
+};
+
+static void job_state_free(struct job_state *js)
+{
+	for (int i = 0; i < js->spec->method_count; i++)
+		if (js->states[i])
+			js->spec->methods[i].method->destroy(js->states[i]);
+	aa_reference_destroy(&js->reference);
+	if (js->renderer) {
+		aa_gpu_buffer_destroy(&js->engine->gpu, &js->readback);
+		aa_gpu_timer_destroy(&js->engine->gpu, &js->timer);
+	}
+	aa_renderer_destroy(js->renderer);
+	if (!js->borrowed)
+		aa_scene_free(js->scene);
+	aa_image_rgbaf_free(&js->full);
+	aa_image_rgbaf_free(&js->half);
+	aa_image_rgbaf_free(&js->output);
+	aa_image_rgba8_free(&js->ref8);
+	aa_image_rgba8_free(&js->half8);
+	aa_image_rgba8_free(&js->out8);
+	aa_image_rgba8_free(&js->diff8);
+}
+
+static int emit(aa_event_fn fn, void *user, struct aa_event *ev, struct aa_error *err)
+{
+	if (fn && fn(ev, user))
+		return aa_error_set(err, AA_ERR_CANCELLED, "", "the job was cancelled");
+	return 0;
+}
+
+static int setup(struct job_state *js, struct aa_error *err)
+{
+	const struct aa_job_spec *spec = js->spec;
+	struct aa_job_result *res = js->result;
+	char file[1024] = "";
+	if (js->borrowed) {
+		js->scene = (struct aa_scene *)js->borrowed;
+	} else if (aa_scene_resolve(spec->scene, file, sizeof file, err) ||
+		   aa_scene_load(file, &js->scene, err)) {
+		return -1;
+	}
+	if (!aa_scene_find_path(js->scene, spec->path)) {
+		char names[512] = "default, static";
+		for (int i = 0; i < js->scene->path_count; i++) {
+			size_t len = strlen(names);
+			snprintf(names + len, sizeof names - len, ", %s", js->scene->paths[i].name);
+		}
+		return aa_error_set(err, AA_ERR_NOT_FOUND, "path", "scene '%s' has no camera path '%s' (paths: %s)",
+				    js->scene->name, spec->path, names);
+	}
+	struct aa_frame_plan plan;
+	aa_frame_plan_build(js->scene, spec, &plan);
+	struct aa_gpu *gpu = &js->engine->gpu;
+	if (aa_renderer_create(gpu, js->scene, &plan, spec->width, spec->height, &js->renderer, err) ||
+	    aa_gpu_timer_create(gpu, &js->timer, err) ||
+	    aa_reference_create(js->renderer, spec->reference_samples, &js->reference, err))
+		return -1;
+
+	res->spec = *spec;
+	snprintf(res->scene_name, sizeof res->scene_name, "%s", js->scene->name);
+	snprintf(res->scene_file, sizeof res->scene_file, "%s", file);
+	res->scene_triangles = aa_scene_triangle_count(js->scene);
+	snprintf(res->device_name, sizeof res->device_name, "%s", gpu->properties.deviceName);
+	snprintf(res->driver_info, sizeof res->driver_info, "%s", gpu->driver_info);
+	res->timestamp_period_ns = gpu->timestamp_period_ns;
+	res->plan_count = plan.entry_count;
+	memcpy(res->plan, plan.entries, sizeof plan.entries);
+	res->reference.samples = spec->reference_samples;
+	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
+	res->reference.memory_bytes = js->reference.memory_bytes;
+	res->reference.frames = calloc((size_t)spec->frames, sizeof *res->reference.frames);
+	if (!res->reference.frames)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	res->method_count = spec->method_count;
+	for (int i = 0; i < spec->method_count; i++) {
+		struct aa_method_result *m = &res->methods[i];
+		const struct aa_method_spec *ms = &spec->methods[i];
+		snprintf(m->label, sizeof m->label, "%s", ms->label);
+		m->method = ms->method;
+		m->params = ms->params;
+		m->frames = calloc((size_t)spec->frames, sizeof *m->frames);
+		if (!m->frames)
+			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		if (ms->method->create(js->renderer, &ms->params, m, &js->states[i], err)) {
+			aa_error_prefix(err, "%s", ms->label);
+			return -1;
+		}
+	}
+	int w = spec->width, h = spec->height;
+	if (aa_image_rgbaf_alloc(&js->full, w, h) || aa_image_rgbaf_alloc(&js->half, w, h) ||
+	    aa_image_rgbaf_alloc(&js->output, w, h) || aa_image_rgba8_alloc(&js->ref8, w, h) ||
+	    aa_image_rgba8_alloc(&js->half8, w, h) || aa_image_rgba8_alloc(&js->out8, w, h) ||
+	    aa_image_rgba8_alloc(&js->diff8, w, h))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
+	return 0;
+}
+
+static int render_reference(struct job_state *js, int ordinal, struct aa_error *err)
+{
+	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
+	rf->frame = js->spec->first_frame + ordinal;
+	if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms, err))
+		return -1;
+	rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+	aa_image_encode_srgb8(&js->full, &js->ref8);
+	aa_image_encode_srgb8(&js->half, &js->half8);
+	struct aa_metrics m;
+	if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
+		return -1;
+	rf->convergence_mse = m.mse;
+	rf->convergence_psnr = m.psnr;
+	rf->convergence_identical = m.identical;
+	js->result->reference.frame_count = ordinal + 1;
+	return 0;
+}
+
+static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, struct aa_error *err)
+{
+	struct aa_gpu *gpu = &js->engine->gpu;
+	const struct aa_method *method = js->spec->methods[i].method;
+	struct aa_frame_result *fr = &js->result->methods[i].frames[ctx->ordinal];
+	double t0 = aa_now_ms();
+	if (ctx->cut && method->reset)
+		method->reset(js->states[i]);
+	if (aa_gpu_begin(gpu, &ctx->cmd, err))
+		return -1;
+	aa_gpu_timer_reset(ctx->cmd, &js->timer);
+	if (js->renderer->plan.shadow_map) {
+		/* every method pays for the shadow map it uses, as it would in an engine */
+		int span = aa_gpu_timer_begin(ctx->cmd, &js->timer, "shadow-map");
+		aa_renderer_record_shadow(js->renderer, ctx->cmd);
+		aa_gpu_timer_end(ctx->cmd, &js->timer, span);
+	}
+	ctx->timer = &js->timer;
+	ctx->output = NULL;
+	if (method->render(js->states[i], ctx, err) || !ctx->output ||
+	    aa_gpu_record_readback(gpu, ctx->cmd, ctx->output, &js->readback, err)) {
+		aa_gpu_submit_wait(gpu, ctx->cmd, NULL);
+		if (!err->message[0])
+			aa_error_set(err, AA_ERR_INTERNAL, "", "%s produced no output", method->name);
+		aa_error_prefix(err, "%s", js->spec->methods[i].label);
+		return -1;
+	}
+	if (aa_gpu_submit_wait(gpu, ctx->cmd, err))
+		return -1;
+	fr->cpu_ms = aa_now_ms() - t0;
+	fr->frame = ctx->frame;
+	double ms[AA_GPU_TIMER_MAX / 2];
+	if (aa_gpu_timer_read(gpu, &js->timer, ms, err))
+		return -1;
+	fr->pass_count = js->timer.span_count < AA_MAX_PASSES ? js->timer.span_count : AA_MAX_PASSES;
+	fr->gpu_ms = 0;
+	for (int s = 0; s < fr->pass_count; s++) {
+		snprintf(fr->passes[s].name, sizeof fr->passes[s].name, "%s", js->timer.spans[s].name);
+		fr->passes[s].gpu_ms = ms[s];
+		fr->gpu_ms += ms[s];
+	}
+	const uint16_t *half = js->readback.mapped;
+	size_t n = (size_t)ctx->width * ctx->height * 4;
+	for (size_t k = 0; k < n; k++)
+		js->output.pixels[k] = half_to_float(half[k]);
+	fr->nonfinite = count_nonfinite(&js->output);
+	aa_image_encode_srgb8(&js->output, &js->out8);
+	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err))
+		return -1;
+	diff_image(&js->ref8, &js->out8, &js->diff8);
+	js->result->methods[i].frame_count = ctx->ordinal + 1;
+	return 0;
+}
+
+int aa_job_run(struct aa_engine *engine, const struct aa_job_spec *spec, aa_event_fn on_event, void *user,
+	       struct aa_job_result **result, struct aa_error *err)
+{
+	return aa_job_run_scene(engine, spec, NULL, on_event, user, result, err);
+}
+
+int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, const struct aa_scene *scene,
+		     aa_event_fn on_event, void *user, struct aa_job_result **result, struct aa_error *err)
+{
+	double t_start = aa_now_ms();
+	struct job_state js = {.engine = engine, .spec = spec, .borrowed = scene};
+	js.result = calloc(1, sizeof *js.result);
+	if (!js.result)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	time_t now = time(NULL);
+	struct tm tm;
+	gmtime_r(&now, &tm);
+	strftime(js.result->started_at, sizeof js.result->started_at, "%Y-%m-%dT%H:%M:%SZ", &tm);
+
+	int rc = setup(&js, err);
+	struct aa_event ev = {.type = AA_EVENT_JOB_STARTED, .result = js.result};
+	if (rc == 0)
+		rc = emit(on_event, user, &ev, err);
+	int total = spec->frames * (1 + spec->method_count), done = 0;
+	const struct aa_camera_path *path = rc == 0 ? aa_scene_find_path(js.scene, spec->path) : NULL;
+	bool hold_first = strcmp(spec->path, "static") == 0;
+	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
+	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
+		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
+		double t = ctx.frame / fps, t_prev = ordinal == 0 ? -1.0 : (ctx.frame - 1) / fps;
+		struct aa_camera cam;
+		aa_camera_path_eval(path, hold_first, t_prev, t, &cam, &ctx.cut);
+		ctx.cut |= ordinal == 0;
+		aa_renderer_set_frame(js.renderer, &cam, t, &ctx);
+
+		rc = render_reference(&js, ordinal, err);
+		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
+				       .frame_ordinal = ordinal, .image = &js.ref8, .linear = &js.full};
+		if (rc == 0)
+			rc = emit(on_event, user, &ev, err);
+		ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done, .total = total};
+		if (rc == 0)
+			rc = emit(on_event, user, &ev, err);
+		for (int i = 0; rc == 0 && i < spec->method_count; i++) {
+			rc = render_method(&js, i, &ctx, err);
+			ev = (struct aa_event){.type = AA_EVENT_METHOD_FRAME, .result = js.result, .frame = ctx.frame,
+					       .frame_ordinal = ordinal, .method_index = i, .image = &js.out8,
+					       .linear = &js.output, .diff = &js.diff8};
+			if (rc == 0)
+				rc = emit(on_event, user, &ev, err);
+			ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done,
+					       .total = total};
+			if (rc == 0)
+				rc = emit(on_event, user, &ev, err);
+		}
+	}
+	js.result->wall_seconds = (aa_now_ms() - t_start) / 1000.0;
+	if (rc == 0) {
+		ev = (struct aa_event){.type = AA_EVENT_JOB_FINISHED, .result = js.result};
+		rc = emit(on_event, user, &ev, err);
+	}
+	job_state_free(&js);
+	if (rc != 0) {
+		aa_job_result_free(js.result);
+		free(js.result);
+		return -1;
+	}
+	*result = js.result;
+	return 0;
+}

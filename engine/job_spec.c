@@ -1,0 +1,372 @@
+/* The job spec: defaults, parsing and validation of the job JSON (docs/job-format.md), and back to JSON. */
+#include <ctype.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "job.h"
+
+/* first_frame is a frame index on the camera path; capped so first_frame + frames fits an int easily. */
+#define AA_MAX_FIRST_FRAME 10000000
+
+static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
+					"reference", "methods", "keep_frames", "name", NULL };
+static const char *const reference_keys[] = { "samples", NULL };
+static const char *const method_keys[] = { "name", "params", NULL };
+
+/* Every job error carries the JSON path of the field; the message does not repeat it, since callers
+ * print "path: message" (as for every aa_error). */
+static int __attribute__((format(printf, 4, 5)))
+bad(struct aa_error *err, enum aa_error_code code, const char *path, const char *fmt, ...)
+{
+	char msg[640];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	return aa_error_set(err, code, path, "%s", msg);
+}
+
+/* User text in a path or message: bounded, control characters replaced. */
+static const char *shown(const char *text, char *buf, size_t size)
+{
+	size_t n = 0;
+	for (; text[n] && n + 1 < size && n < 48; n++)
+		buf[n] = iscntrl((unsigned char)text[n]) ? '?' : text[n];
+	buf[n] = '\0';
+	return buf;
+}
+
+static const char *type_name(const json_t *v)
+{
+	switch (json_typeof(v)) {
+	case JSON_OBJECT: return "an object";
+	case JSON_ARRAY: return "an array";
+	case JSON_STRING: return "a string";
+	case JSON_INTEGER: return "an integer";
+	case JSON_REAL: return "a number with a fraction or exponent";
+	case JSON_TRUE:
+	case JSON_FALSE: return "a boolean";
+	case JSON_NULL: return "null";
+	}
+	return "an unknown value";
+}
+
+static int check_keys(const json_t *obj, const char *path, const char *const *valid, struct aa_error *err)
+{
+	const char *key;
+	json_t *value;
+	json_object_foreach((json_t *)obj, key, value) {
+		int i = 0;
+		while (valid[i] && strcmp(valid[i], key) != 0)
+			i++;
+		if (valid[i])
+			continue;
+		char list[512] = "", where[300], k[64];
+		for (i = 0; valid[i]; i++)
+			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", valid[i]);
+		snprintf(where, sizeof where, "%s%s%s", path, *path ? "." : "", shown(key, k, sizeof k));
+		return bad(err, AA_ERR_INVALID, where, "unknown key; valid keys: %s", list);
+	}
+	return 0;
+}
+
+/* Integers only (8.0 is refused: counts are written as integers). Above max is a limit, below min is
+ * invalid, so a client can tell "ask for less" from "that makes no sense". */
+static int get_int(const json_t *v, const char *path, long long min, long long max, int *out,
+		   struct aa_error *err)
+{
+	if (!json_is_integer(v))
+		return bad(err, AA_ERR_INVALID, path, "expected an integer, got %s", type_name(v));
+	const long long x = json_integer_value(v);
+	if (x < min || x > max)
+		return bad(err, x > max ? AA_ERR_LIMIT : AA_ERR_INVALID, path,
+			   "%lld is out of range; valid range: %lld to %lld", x, min, max);
+	*out = (int)x;
+	return 0;
+}
+
+/* A string that fits out, is non-empty unless allowed, and holds no control characters. */
+static int get_string(const json_t *v, const char *path, bool allow_empty, char *out, size_t size,
+		      struct aa_error *err)
+{
+	if (!json_is_string(v))
+		return bad(err, AA_ERR_INVALID, path, "expected a string, got %s", type_name(v));
+	const char *s = json_string_value(v);
+	const size_t n = json_string_length(v);
+	if (n == 0 && !allow_empty)
+		return bad(err, AA_ERR_INVALID, path, "must not be empty");
+	if (n >= size)
+		return bad(err, AA_ERR_LIMIT, path, "is %zu bytes long; the limit is %zu", n, size - 1);
+	for (size_t i = 0; i < n; i++)
+		if (iscntrl((unsigned char)s[i]) || s[i] == '\0')
+			return bad(err, AA_ERR_INVALID, path, "contains a control character at byte %zu", i);
+	memcpy(out, s, n + 1);
+	return 0;
+}
+
+/* Scene names are looked up in the scene directories, so a name must not climb out of them; anything
+ * that is not a plain name is a file path and must name a .json scene file. Resolution happens later. */
+static int check_scene_syntax(const char *scene, struct aa_error *err)
+{
+	const size_t n = strlen(scene);
+	bool plain = isalnum((unsigned char)scene[0]) && n < 64;
+	for (size_t i = 0; plain && i < n; i++)
+		plain = isalnum((unsigned char)scene[i]) || strchr("._-", scene[i]);
+	if (plain)
+		return 0;
+	if (n > 5 && strcmp(scene + n - 5, ".json") == 0)
+		return 0;
+	return bad(err, AA_ERR_INVALID, "scene",
+		   "\"%.60s\" is neither a scene name (letters, digits, '.', '_', '-', starting with a letter or "
+		   "digit, under 64 bytes) nor a path to a .json scene file", scene);
+}
+
+int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err)
+{
+	char s[64];
+	if (!text)
+		text = "";
+	const char *x = strpbrk(text, "xX");
+	const size_t lw = x ? (size_t)(x - text) : 0, lh = x ? strlen(x + 1) : 0;
+	const bool digits = x && lw > 0 && lh > 0 && strspn(text, "0123456789") == lw &&
+			    strspn(x + 1, "0123456789") == lh;
+	if (!digits)
+		return bad(err, AA_ERR_INVALID, "size",
+			   "\"%s\" is not a size; write WIDTHxHEIGHT with each from 1 to %d, e.g. 640x360",
+			   shown(text, s, sizeof s), AA_MAX_SIZE);
+	/* More than 9 digits is out of range anyway; checking length first avoids overflow. */
+	const long long vw = lw > 9 ? LLONG_MAX : atoll(text), vh = lh > 9 ? LLONG_MAX : atoll(x + 1);
+	const long long bad_v = vw < 1 || vw > AA_MAX_SIZE ? vw : vh;
+	if (vw < 1 || vw > AA_MAX_SIZE || vh < 1 || vh > AA_MAX_SIZE)
+		return bad(err, bad_v > AA_MAX_SIZE ? AA_ERR_LIMIT : AA_ERR_INVALID, "size",
+			   "\"%s\": %s is out of range; width and height must each be from 1 to %d",
+			   shown(text, s, sizeof s), bad_v == vw ? "width" : "height", AA_MAX_SIZE);
+	*w = (int)vw;
+	*h = (int)vh;
+	return 0;
+}
+
+static int parse_size_value(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+{
+	if (json_is_string(v))
+		return aa_parse_size(json_string_value(v), &s->width, &s->height, err);
+	if (!json_is_array(v) || json_array_size(v) != 2)
+		return bad(err, AA_ERR_INVALID, "size",
+			   "expected \"WIDTHxHEIGHT\" or [width, height], got %s%s", type_name(v),
+			   json_is_array(v) ? " of the wrong length" : "");
+	if (get_int(json_array_get(v, 0), "size[0]", 1, AA_MAX_SIZE, &s->width, err) < 0 ||
+	    get_int(json_array_get(v, 1), "size[1]", 1, AA_MAX_SIZE, &s->height, err) < 0)
+		return -1;
+	return 0;
+}
+
+/* JSON parameter values go through the same text parser as "key=value", so both forms validate alike. */
+static int param_value_text(const json_t *v, const char *path, char *out, size_t size, struct aa_error *err)
+{
+	switch (json_typeof(v)) {
+	case JSON_INTEGER:
+		snprintf(out, size, "%" JSON_INTEGER_FORMAT, json_integer_value(v));
+		return 0;
+	case JSON_REAL:
+		snprintf(out, size, "%.17g", json_real_value(v));
+		return 0;
+	case JSON_TRUE:
+	case JSON_FALSE:
+		snprintf(out, size, "%s", json_is_true(v) ? "true" : "false");
+		return 0;
+	case JSON_STRING:
+		return get_string(v, path, true, out, size, err);
+	default:
+		return bad(err, AA_ERR_INVALID, path, "expected a number, string or boolean, got %s", type_name(v));
+	}
+}
+
+/* {"name": "ssaa", "params": {"samples": 16}} */
+static int parse_method_object(const json_t *obj, const char *path, struct aa_method_spec *ms,
+			       struct aa_error *err)
+{
+	char where[300], name[64], text[AA_METHOD_TEXT_MAX], known[512];
+	if (check_keys(obj, path, method_keys, err) < 0)
+		return -1;
+	const json_t *jname = json_object_get(obj, "name");
+	snprintf(where, sizeof where, "%s.name", path);
+	if (!jname)
+		return bad(err, AA_ERR_INVALID, where, "missing; give the method name, e.g. \"ssaa\"");
+	if (get_string(jname, where, false, name, sizeof name, err) < 0)
+		return -1;
+	if (strchr(name, ':'))
+		return bad(err, AA_ERR_INVALID, where,
+			   "\"%s\" is a method string; in the object form give the bare name and put parameters in "
+			   "\"params\"", name);
+	ms->method = aa_method_find(name);
+	if (!ms->method) {
+		aa_method_list_names(known, sizeof known);
+		return bad(err, AA_ERR_NOT_FOUND, where, "unknown method \"%s\"; known methods: %s",
+			   shown(name, text, sizeof text), known);
+	}
+	aa_method_defaults(ms->method, &ms->params);
+
+	const json_t *params = json_object_get(obj, "params");
+	if (!params)
+		return 0;
+	snprintf(where, sizeof where, "%s.params", path);
+	if (!json_is_object(params))
+		return bad(err, AA_ERR_INVALID, where, "expected an object of parameter values, got %s",
+			   type_name(params));
+	const char *key;
+	json_t *value;
+	json_object_foreach((json_t *)params, key, value) {
+		char k[64];
+		snprintf(where, sizeof where, "%s.params.%s", path, shown(key, k, sizeof k));
+		if (param_value_text(value, where, text, sizeof text, err) < 0 ||
+		    aa_method_set_param(ms->method, &ms->params, key, text, where, err) < 0)
+			return -1;
+	}
+	return 0;
+}
+
+static int parse_methods(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+{
+	if (!json_is_array(v))
+		return bad(err, AA_ERR_INVALID, "methods", "expected an array of methods, got %s", type_name(v));
+	const size_t n = json_array_size(v);
+	if (n == 0)
+		return bad(err, AA_ERR_INVALID, "methods", "the list is empty; give at least one method, e.g. [\"none\"]");
+	if (n > AA_MAX_METHODS)
+		return bad(err, AA_ERR_LIMIT, "methods", "%zu methods; a job compares at most %d", n, AA_MAX_METHODS);
+
+	for (size_t i = 0; i < n; i++) {
+		const json_t *item = json_array_get(v, i);
+		struct aa_method_spec *ms = &s->methods[i];
+		char path[32], label[AA_METHOD_TEXT_MAX];
+		snprintf(path, sizeof path, "methods[%zu]", i);
+		if (json_is_string(item)) {
+			if (aa_method_parse(json_string_value(item), path, &ms->method, &ms->params, err) < 0)
+				return -1;
+		} else if (json_is_object(item)) {
+			if (parse_method_object(item, path, ms, err) < 0)
+				return -1;
+		} else {
+			return bad(err, AA_ERR_INVALID, path,
+				   "expected a method string (\"ssaa:16\") or an object {\"name\": ..., \"params\": {...}}, "
+				   "got %s", type_name(item));
+		}
+		aa_method_label(ms->method, &ms->params, label, sizeof label);
+		if (strlen(label) >= sizeof ms->label)
+			return bad(err, AA_ERR_LIMIT, path, "label \"%.60s...\" is longer than %zu bytes", label,
+				   sizeof ms->label - 1);
+		memcpy(ms->label, label, strlen(label) + 1);
+		/* Equal labels mean equal parameters: the same work twice, and results that cannot be told apart. */
+		for (size_t j = 0; j < i; j++)
+			if (strcmp(s->methods[j].label, ms->label) == 0)
+				return bad(err, AA_ERR_INVALID, path,
+					   "same method and parameters as methods[%zu] (%s); list it once", j, ms->label);
+	}
+	s->method_count = (int)n;
+	return 0;
+}
+
+static int parse_reference(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+{
+	if (!json_is_object(v))
+		return bad(err, AA_ERR_INVALID, "reference", "expected an object like {\"samples\": 64}, got %s",
+			   type_name(v));
+	if (check_keys(v, "reference", reference_keys, err) < 0)
+		return -1;
+	const json_t *samples = json_object_get(v, "samples");
+	if (!samples)
+		return 0;
+	if (get_int(samples, "reference.samples", 2, AA_MAX_REFERENCE_SAMPLES, &s->reference_samples, err) < 0)
+		return -1;
+	if (s->reference_samples % 2 != 0)
+		return bad(err, AA_ERR_INVALID, "reference.samples",
+			   "%d is odd; the count must be even because the first half (N/2 samples) is compared "
+			   "with all N to measure the reference's convergence", s->reference_samples);
+	return 0;
+}
+
+void aa_job_spec_defaults(struct aa_job_spec *spec)
+{
+	memset(spec, 0, sizeof *spec);
+	snprintf(spec->scene, sizeof spec->scene, "thin-wires");
+	snprintf(spec->path, sizeof spec->path, "default");
+	spec->width = 640;
+	spec->height = 360;
+	spec->frames = 1;
+	spec->first_frame = 0;
+	spec->reference_samples = 64;
+	spec->keep_frames = true;
+	const struct aa_method *none = aa_method_find("none");
+	if (none) {
+		spec->method_count = 1;
+		spec->methods[0].method = none;
+		aa_method_defaults(none, &spec->methods[0].params);
+		aa_method_label(none, &spec->methods[0].params, spec->methods[0].label, sizeof spec->methods[0].label);
+	}
+}
+
+int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa_error *err)
+{
+	/* Parse into a copy so that a refused job leaves *spec as it was. */
+	struct aa_job_spec s;
+	aa_job_spec_defaults(&s);
+	if (!json_is_object(job))
+		return bad(err, AA_ERR_INVALID, "", "a job must be a JSON object, got %s",
+			   job ? type_name(job) : "nothing");
+	if (check_keys(job, "", job_keys, err) < 0)
+		return -1;
+
+	const json_t *v;
+	if ((v = json_object_get(job, "scene")) &&
+	    (get_string(v, "scene", false, s.scene, sizeof s.scene, err) < 0 || check_scene_syntax(s.scene, err) < 0))
+		return -1;
+	if ((v = json_object_get(job, "path")) && get_string(v, "path", false, s.path, sizeof s.path, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "size"))) {
+		if (json_object_get(job, "width") || json_object_get(job, "height"))
+			return bad(err, AA_ERR_INVALID, "size", "give either \"size\" or \"width\"/\"height\", not both");
+		if (parse_size_value(v, &s, err) < 0)
+			return -1;
+	}
+	if ((v = json_object_get(job, "width")) && get_int(v, "width", 1, AA_MAX_SIZE, &s.width, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "height")) && get_int(v, "height", 1, AA_MAX_SIZE, &s.height, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "frames")) && get_int(v, "frames", 1, AA_MAX_FRAMES, &s.frames, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "first_frame")) &&
+	    get_int(v, "first_frame", 0, AA_MAX_FIRST_FRAME, &s.first_frame, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "reference")) && parse_reference(v, &s, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "methods")) && parse_methods(v, &s, err) < 0)
+		return -1;
+	if ((v = json_object_get(job, "keep_frames"))) {
+		if (!json_is_boolean(v))
+			return bad(err, AA_ERR_INVALID, "keep_frames", "expected true or false, got %s", type_name(v));
+		s.keep_frames = json_is_true(v);
+	}
+	if ((v = json_object_get(job, "name")) && get_string(v, "name", true, s.name, sizeof s.name, err) < 0)
+		return -1;
+	*spec = s;
+	return 0;
+}
+
+/* The canonical form: every field present, size as text and methods as their labels, which parse back
+ * to the same parameters. */
+json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
+{
+	char size[32];
+	snprintf(size, sizeof size, "%dx%d", spec->width, spec->height);
+	json_t *methods = json_array();
+	for (int i = 0; methods && i < spec->method_count && i < AA_MAX_METHODS; i++)
+		json_array_append_new(methods, json_string(spec->methods[i].label));
+	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:s}",
+				"scene", spec->scene, "path", spec->path, "size", size, "frames", spec->frames,
+				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,
+				"methods", methods, "keep_frames", spec->keep_frames, "name", spec->name);
+	return job;
+}

@@ -1,0 +1,32 @@
+/* The ground truth: N renders jittered over the pixel by a low-discrepancy pattern, accumulated in float
+ * (a box filter over the pixel). The N/2-sample image is kept to measure the reference's own error. */
+#ifndef AA_REFERENCE_H
+#define AA_REFERENCE_H
+
+#include "../image/image.h"
+#include "../renderer.h"
+
+struct aa_reference {
+	struct aa_renderer *r;
+	int samples;
+	struct aa_scene_target target;
+	struct aa_gpu_image accum;     /* RGBA32F sum of the renders */
+	struct aa_fullscreen_pass accumulate;
+	struct aa_gpu_buffer readback;
+	float (*offsets)[2];           /* per sample, in pixels, within [-0.5, 0.5) */
+	uint64_t memory_bytes;
+};
+
+/* Radical inverse of index in base (Halton sequence; index 0 gives 0). */
+double aa_halton(unsigned index, unsigned base);
+/* The reference's jitter: Halton(2,3) points 1..n mapped to [-0.5, 0.5)^2. */
+void aa_reference_offsets(int n, float (*out)[2]);
+
+int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference *ref, struct aa_error *err);
+void aa_reference_destroy(struct aa_reference *ref);
+/* Renders the current frame (aa_renderer_set_frame done) into full (N samples) and half (first N/2
+ * samples), both linear float. gpu_ms: all renders and accumulation; cpu_ms: wall time. */
+int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, struct aa_image_rgbaf *full,
+			struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms, struct aa_error *err);
+
+#endif

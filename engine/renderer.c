@@ -1,0 +1,533 @@
+/* The renderer: uploads a scene once, then records shadow, scene and full-screen passes for methods and
+ * the reference. Only the passes in the frame plan are created or recorded. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderer.h"
+
+void aa_method_result_add_memory(struct aa_method_result *info, const char *name, uint64_t bytes)
+{
+	if (!info)
+		return;
+	if (info->memory_count < AA_MAX_MEMORY_ITEMS) {
+		struct aa_memory_item *m = &info->memory[info->memory_count++];
+		snprintf(m->name, sizeof m->name, "%s", name);
+		m->bytes = bytes;
+	}
+	info->memory_bytes += bytes;
+}
+
+int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, int width, int height,
+			     VkFormat format, VkImageUsageFlags usage, const char *name,
+			     struct aa_method_result *info, struct aa_error *err)
+{
+	if (aa_gpu_image_create(r->gpu, img, width, height, format, usage, 1, 1, err))
+		return -1;
+	aa_method_result_add_memory(info, name, img->bytes);
+	return 0;
+}
+
+static int upload_geometry(struct aa_renderer *r, struct aa_error *err)
+{
+	const struct aa_scene *s = r->scene;
+	size_t nv = 0, ni = 0;
+	for (int i = 0; i < s->mesh_count; i++) {
+		nv += s->meshes[i].vertex_count;
+		ni += s->meshes[i].index_count;
+	}
+	if (nv == 0 || ni == 0)
+		return aa_error_set(err, AA_ERR_INVALID, "objects", "the scene has no geometry to draw");
+	struct aa_vertex *v = malloc(nv * sizeof *v);
+	uint32_t *idx = malloc(ni * sizeof *idx);
+	r->mesh_first_index = calloc((size_t)s->mesh_count, sizeof(uint32_t));
+	r->mesh_vertex_offset = calloc((size_t)s->mesh_count, sizeof(uint32_t));
+	if (!v || !idx || !r->mesh_first_index || !r->mesh_vertex_offset) {
+		free(v);
+		free(idx);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory uploading the scene");
+	}
+	size_t ov = 0, oi = 0;
+	for (int i = 0; i < s->mesh_count; i++) {
+		const struct aa_mesh *m = &s->meshes[i];
+		r->mesh_vertex_offset[i] = (uint32_t)ov;
+		r->mesh_first_index[i] = (uint32_t)oi;
+		memcpy(v + ov, m->vertices, m->vertex_count * sizeof *v);
+		memcpy(idx + oi, m->indices, m->index_count * sizeof *idx);
+		ov += m->vertex_count;
+		oi += m->index_count;
+	}
+	int rc = aa_gpu_buffer_upload(r->gpu, &r->vertices, v, nv * sizeof *v, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+				      err);
+	if (rc == 0)
+		rc = aa_gpu_buffer_upload(r->gpu, &r->indices, idx, ni * sizeof *idx,
+					  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, err);
+	free(v);
+	free(idx);
+	return rc;
+}
+
+static int upload_materials(struct aa_renderer *r, struct aa_error *err)
+{
+	const struct aa_scene *s = r->scene;
+	int n = s->material_count > 0 ? s->material_count : 1;
+	struct aa_material_gpu *g = calloc((size_t)n, sizeof *g);
+	if (!g)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	for (int i = 0; i < s->material_count; i++) {
+		const struct aa_material *m = &s->materials[i];
+		memcpy(g[i].base_color, m->base_color, sizeof g[i].base_color);
+		memcpy(g[i].color2, m->color2, 3 * sizeof(float));
+		g[i].color2[3] = (float)m->pattern;
+		g[i].pattern[0] = m->scale[0];
+		g[i].pattern[1] = m->scale[1];
+		g[i].pattern[2] = m->stripe_width;
+		g[i].shading[0] = m->specular;
+		g[i].shading[1] = m->roughness;
+		g[i].shading[2] = m->alpha_cutoff;
+		g[i].shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0));
+	}
+	int rc = aa_gpu_buffer_upload(r->gpu, &r->materials, g, (VkDeviceSize)n * sizeof *g,
+				      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, err);
+	free(g);
+	return rc;
+}
+
+static int upload_textures(struct aa_renderer *r, struct aa_error *err)
+{
+	const struct aa_scene *s = r->scene;
+	r->textures = calloc((size_t)s->texture_count + 1, sizeof *r->textures);
+	if (!r->textures)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+	for (int i = 0; i < s->texture_count; i++) {
+		const struct aa_texture *t = &s->textures[i];
+		if (aa_gpu_image_create(r->gpu, &r->textures[i], t->width, t->height, VK_FORMAT_R8G8B8A8_SRGB, usage,
+					1, (uint32_t)t->mip_levels, err) ||
+		    aa_gpu_image_upload_rgba8(r->gpu, &r->textures[i], (const uint8_t *const *)t->mips, err))
+			return -1;
+	}
+	static const uint8_t white[4] = {255, 255, 255, 255};
+	const uint8_t *levels[1] = {white};
+	struct aa_gpu_image *w = &r->textures[s->texture_count];
+	if (aa_gpu_image_create(r->gpu, w, 1, 1, VK_FORMAT_R8G8B8A8_SRGB, usage, 1, 1, err) ||
+	    aa_gpu_image_upload_rgba8(r->gpu, w, levels, err))
+		return -1;
+	return 0;
+}
+
+/* The shadow map, or a 1x1 cleared stand-in so the descriptor is always valid. */
+static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
+{
+	int size = r->plan.shadow_map ? AA_SHADOW_MAP_SIZE : 1;
+	if (aa_gpu_image_create(r->gpu, &r->shadow_map, size, size, AA_DEPTH_FORMAT,
+				VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err))
+		return -1;
+	VkCommandBuffer cmd;
+	if (aa_gpu_begin(r->gpu, &cmd, err))
+		return -1;
+	aa_gpu_image_barrier(cmd, &r->shadow_map, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+	VkClearDepthStencilValue zero = {0.0f, 0};
+	VkImageSubresourceRange range = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+	vkCmdClearDepthStencilImage(cmd, r->shadow_map.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+				    &range);
+	aa_gpu_image_barrier(cmd, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	if (aa_gpu_submit_wait(r->gpu, cmd, err))
+		return -1;
+	if (!r->plan.shadow_map)
+		return 0;
+	struct aa_gpu_pass_desc pd = {.depth_format = AA_DEPTH_FORMAT, .depth_readable = true, .samples = 1};
+	struct aa_gpu_image *att[1] = {&r->shadow_map};
+	return aa_gpu_render_pass_create(r->gpu, &pd, &r->shadow_pass, err) ||
+	       aa_gpu_framebuffer_create(r->gpu, r->shadow_pass, att, 1, &r->shadow_framebuffer, err);
+}
+
+static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
+{
+	struct aa_gpu *g = r->gpu;
+	struct aa_gpu_pass_desc scene = {
+		.color_count = 1, .color_formats = {AA_SCENE_COLOR_FORMAT}, .depth_format = AA_DEPTH_FORMAT,
+		.samples = 1,
+	};
+	struct aa_gpu_pass_desc color = {.color_count = 1, .color_formats = {AA_SCENE_COLOR_FORMAT}, .samples = 1};
+	struct aa_gpu_pass_desc accum = {
+		.color_count = 1, .color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT}, .color_load = {true},
+		.samples = 1,
+	};
+	if (aa_gpu_render_pass_create(g, &scene, &r->scene_pass, err) ||
+	    aa_gpu_render_pass_create(g, &color, &r->color_pass, err) ||
+	    aa_gpu_render_pass_create(g, &accum, &r->accumulate_pass, err))
+		return -1;
+	VkDescriptorType types[4] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+	if (aa_gpu_layout_create(g, types, NULL, 4, sizeof(struct aa_draw_push), &r->scene_pipeline, err))
+		return -1;
+	VkBool32 yes = VK_TRUE;
+	VkSpecializationMapEntry entry = {0, 0, sizeof yes};
+	VkSpecializationInfo alpha_test = {1, &entry, sizeof yes, &yes};
+	struct aa_gpu_graphics_desc d = {
+		.vert = "scene.vert", .frag = "scene.frag", .vertex_layout = AA_VERTEX_SCENE,
+		.render_pass = r->scene_pass, .color_count = 1, .samples = 1, .depth_test = true,
+		.depth_write = true, .cull = VK_CULL_MODE_NONE, .layout = r->scene_pipeline.layout,
+	};
+	if (aa_gpu_graphics_pipeline_create(g, &d, &r->scene_pipeline, err))
+		return -1;
+	if (r->plan.alpha_test) {
+		d.frag_specialization = &alpha_test;
+		if (aa_gpu_graphics_pipeline_create(g, &d, &r->scene_cutout_pipeline, err))
+			return -1;
+	}
+	if (r->plan.shadow_map) {
+		struct aa_gpu_graphics_desc sd = {
+			.vert = "shadow.vert", .vertex_layout = AA_VERTEX_SCENE, .render_pass = r->shadow_pass,
+			.samples = 1, .depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
+			.layout = r->scene_pipeline.layout,
+			/* reversed-Z: push stored depths toward the light (larger) is wrong; push them away */
+			.depth_bias_constant = -2.0f, .depth_bias_slope = -2.0f,
+		};
+		if (aa_gpu_graphics_pipeline_create(g, &sd, &r->shadow_pipeline, err))
+			return -1;
+		if (r->plan.alpha_test) {
+			sd.frag = "shadow_cutout.frag";
+			if (aa_gpu_graphics_pipeline_create(g, &sd, &r->shadow_cutout_pipeline, err))
+				return -1;
+		}
+	}
+	return 0;
+}
+
+static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
+{
+	int n = r->scene->texture_count + 1;
+	if (aa_gpu_descriptor_pool_create(r->gpu, (uint32_t)n + 64, &r->pool, err))
+		return -1;
+	r->texture_sets = calloc((size_t)n, sizeof *r->texture_sets);
+	if (!r->texture_sets)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	for (int i = 0; i < n; i++) {
+		if (aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &r->scene_pipeline, &r->texture_sets[i], err))
+			return -1;
+		VkDescriptorSet set = r->texture_sets[i];
+		aa_gpu_write_buffer(r->gpu, set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &r->frame_ubo);
+		aa_gpu_write_buffer(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->materials);
+		aa_gpu_write_image(r->gpu, set, 2, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				   r->gpu->sampler_linear, &r->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+		aa_gpu_write_image(r->gpu, set, 3, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				   r->gpu->sampler_shadow, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	}
+	return 0;
+}
+
+int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_frame_plan *plan,
+		       int width, int height, struct aa_renderer **out, struct aa_error *err)
+{
+	struct aa_renderer *r = calloc(1, sizeof *r);
+	if (!r)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	r->gpu = gpu;
+	r->scene = scene;
+	r->plan = *plan;
+	r->width = width;
+	r->height = height;
+	r->models = calloc((size_t)(scene->object_count ? scene->object_count : 1), sizeof *r->models);
+	if (!r->models || upload_geometry(r, err) || upload_materials(r, err) || upload_textures(r, err) ||
+	    aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
+				 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, err) ||
+	    create_shadow_map(r, err) || create_pipelines(r, err) || create_descriptors(r, err)) {
+		if (!r->models)
+			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		aa_renderer_destroy(r);
+		return -1;
+	}
+	*out = r;
+	return 0;
+}
+
+void aa_renderer_destroy(struct aa_renderer *r)
+{
+	if (!r)
+		return;
+	struct aa_gpu *g = r->gpu;
+	vkDeviceWaitIdle(g->device);
+	aa_gpu_pipeline_destroy(g, &r->shadow_cutout_pipeline);
+	aa_gpu_pipeline_destroy(g, &r->shadow_pipeline);
+	/* the cut-out pipeline borrows the scene pipeline's layout */
+	if (r->scene_cutout_pipeline.pipeline)
+		vkDestroyPipeline(g->device, r->scene_cutout_pipeline.pipeline, NULL);
+	if (r->shadow_pipeline.pipeline == VK_NULL_HANDLE && r->shadow_cutout_pipeline.pipeline == VK_NULL_HANDLE) {
+		/* nothing else borrowed the layout */
+	}
+	aa_gpu_pipeline_destroy(g, &r->scene_pipeline);
+	if (r->pool)
+		vkDestroyDescriptorPool(g->device, r->pool, NULL);
+	VkRenderPass passes[] = {r->scene_pass, r->shadow_pass, r->color_pass, r->accumulate_pass};
+	for (size_t i = 0; i < sizeof passes / sizeof passes[0]; i++)
+		if (passes[i])
+			vkDestroyRenderPass(g->device, passes[i], NULL);
+	if (r->shadow_framebuffer)
+		vkDestroyFramebuffer(g->device, r->shadow_framebuffer, NULL);
+	aa_gpu_image_destroy(g, &r->shadow_map);
+	if (r->textures)
+		for (int i = 0; i <= r->scene->texture_count; i++)
+			aa_gpu_image_destroy(g, &r->textures[i]);
+	aa_gpu_buffer_destroy(g, &r->vertices);
+	aa_gpu_buffer_destroy(g, &r->indices);
+	aa_gpu_buffer_destroy(g, &r->materials);
+	aa_gpu_buffer_destroy(g, &r->frame_ubo);
+	free(r->textures);
+	free(r->texture_sets);
+	free(r->mesh_first_index);
+	free(r->mesh_vertex_offset);
+	free(r->models);
+	free(r);
+}
+
+/* Bounds of everything in the scene at this frame, for fitting the shadow map. */
+static void scene_bounds(struct aa_renderer *r, vec3 *center, float *radius)
+{
+	vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
+	for (int o = 0; o < r->scene->object_count; o++) {
+		const struct aa_mesh *m = &r->scene->meshes[r->scene->objects[o].mesh_index];
+		for (uint32_t i = 0; i < m->vertex_count; i++) {
+			const float *p = m->vertices[i].position;
+			vec3 w = mat4_transform_point(r->models[o], v3(p[0], p[1], p[2]));
+			lo = v3(fminf(lo.x, w.x), fminf(lo.y, w.y), fminf(lo.z, w.z));
+			hi = v3(fmaxf(hi.x, w.x), fmaxf(hi.y, w.y), fmaxf(hi.z, w.z));
+		}
+	}
+	*center = v3_scale(v3_add(lo, hi), 0.5f);
+	*radius = fmaxf(v3_length(v3_sub(hi, lo)) * 0.5f, 1e-3f);
+}
+
+static mat4 camera_projection(const struct aa_camera *c, int width, int height)
+{
+	float aspect = (float)width / (float)height;
+	if (c->projection == AA_PROJECTION_ORTHOGRAPHIC)
+		return mat4_ortho_reversed_z(c->ortho_height * aspect, c->ortho_height, c->near_plane, c->far_plane);
+	return mat4_perspective_reversed_z(c->fov_y_degrees * (float)M_PI / 180.0f, aspect, c->near_plane,
+					   c->far_plane);
+}
+
+void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
+			   struct aa_frame_ctx *ctx)
+{
+	const struct aa_scene *s = r->scene;
+	ctx->camera = *camera;
+	ctx->time = t;
+	ctx->width = r->width;
+	ctx->height = r->height;
+	ctx->view = mat4_look_at(camera->position, camera->target, camera->up);
+	ctx->proj = camera_projection(camera, r->width, r->height);
+	ctx->view_proj = mat4_mul(ctx->proj, ctx->view);
+	for (int o = 0; o < s->object_count; o++)
+		r->models[o] = aa_object_model_matrix(&s->objects[o], t);
+
+	struct aa_frame_uniforms *u = &r->uniforms;
+	memset(u, 0, sizeof *u);
+	memcpy(u->view_proj, ctx->view_proj.m, sizeof u->view_proj);
+	u->camera_position[0] = camera->position.x;
+	u->camera_position[1] = camera->position.y;
+	u->camera_position[2] = camera->position.z;
+	memcpy(u->ambient, s->ambient, 3 * sizeof(float));
+	int shadow_light = -1;
+	for (int i = 0; i < s->light_count && i < AA_MAX_LIGHTS; i++) {
+		const struct aa_light *l = &s->lights[i];
+		bool point = l->type == AA_LIGHT_POINT;
+		const float *p = point ? l->position : l->direction;
+		for (int k = 0; k < 3; k++) {
+			u->lights[i].position_type[k] = p[k];
+			u->lights[i].color_range[k] = l->color[k] * l->intensity;
+		}
+		u->lights[i].position_type[3] = point ? 1.0f : 0.0f;
+		u->lights[i].color_range[3] = l->range;
+		if (r->plan.shadow_map && shadow_light < 0 && l->casts_shadow && !point) {
+			shadow_light = i;
+			u->lights[i].shadow[0] = 1.0f;
+		}
+		u->counts[0] = i + 1;
+	}
+	u->counts[1] = shadow_light >= 0;
+	if (shadow_light >= 0) {
+		vec3 c;
+		float radius;
+		scene_bounds(r, &c, &radius);
+		const float *d = s->lights[shadow_light].direction;
+		vec3 dir = v3_normalize(v3(d[0], d[1], d[2]));
+		vec3 up = fabsf(dir.y) > 0.99f ? v3(1, 0, 0) : v3(0, 1, 0);
+		mat4 view = mat4_look_at(v3_sub(c, v3_scale(dir, 2.0f * radius)), c, up);
+		mat4 proj = mat4_ortho_reversed_z(2.0f * radius, 2.0f * radius, radius * 0.5f, radius * 3.5f);
+		r->shadow_view_proj = mat4_mul(proj, view);
+		memcpy(u->shadow_view_proj, r->shadow_view_proj.m, sizeof u->shadow_view_proj);
+	}
+	memcpy(r->frame_ubo.mapped, u, sizeof *u);
+}
+
+static void push_object(struct aa_renderer *r, VkCommandBuffer cmd, int o, float jx, float jy)
+{
+	struct aa_draw_push push;
+	memset(&push, 0, sizeof push);
+	mat4 model = r->models[o], inv;
+	memcpy(push.model, model.m, sizeof push.model);
+	if (mat4_invert(model, &inv) != 0)
+		inv = mat4_identity();
+	mat4 nt = mat4_transpose(inv);
+	for (int c = 0; c < 3; c++)
+		for (int k = 0; k < 3; k++)
+			push.normal_matrix[c * 4 + k] = nt.m[c * 4 + k];
+	push.material = (uint32_t)r->scene->objects[o].material_index;
+	push.object_id = r->scene->objects[o].model_id;
+	push.jitter_ndc[0] = jx;
+	push.jitter_ndc[1] = jy;
+	vkCmdPushConstants(cmd, r->scene_pipeline.layout, VK_SHADER_STAGE_ALL, 0, sizeof push, &push);
+}
+
+static VkDescriptorSet object_set(struct aa_renderer *r, int o)
+{
+	const struct aa_material *m = &r->scene->materials[r->scene->objects[o].material_index];
+	int t = m->pattern == AA_PATTERN_TEXTURE && m->texture_index >= 0 ? m->texture_index
+									   : r->scene->texture_count;
+	return r->texture_sets[t];
+}
+
+static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struct aa_gpu_pipeline *opaque,
+			 const struct aa_gpu_pipeline *cutout, float jx, float jy)
+{
+	VkDeviceSize zero = 0;
+	vkCmdBindVertexBuffers(cmd, 0, 1, &r->vertices.buffer, &zero);
+	vkCmdBindIndexBuffer(cmd, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+	/* opaque objects first, cut-outs with the discard pipeline after them */
+	for (int pass = 0; pass < 2; pass++) {
+		const struct aa_gpu_pipeline *p = pass == 0 ? opaque : cutout;
+		if (!p || !p->pipeline)
+			continue;
+		vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
+		for (int o = 0; o < r->scene->object_count; o++) {
+			const struct aa_object *obj = &r->scene->objects[o];
+			bool is_cutout = r->scene->materials[obj->material_index].alpha_cutout && cutout &&
+					 cutout->pipeline;
+			if (is_cutout != (pass == 1))
+				continue;
+			VkDescriptorSet set = object_set(r, o);
+			vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_pipeline.layout, 0, 1,
+						&set, 0, NULL);
+			push_object(r, cmd, o, jx, jy);
+			const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
+			vkCmdDrawIndexed(cmd, m->index_count, 1, r->mesh_first_index[obj->mesh_index],
+					 (int32_t)r->mesh_vertex_offset[obj->mesh_index], 0);
+		}
+	}
+}
+
+void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
+{
+	if (!r->plan.shadow_map)
+		return;
+	VkClearValue clear = {.depthStencil = {0.0f, 0}};
+	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
+			  &clear, 1);
+	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 0.0f, 0.0f);
+	vkCmdEndRenderPass(cmd);
+	r->shadow_map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
+int aa_scene_target_create(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
+			   const char *name, struct aa_method_result *info, struct aa_error *err)
+{
+	memset(t, 0, sizeof *t);
+	t->width = width;
+	t->height = height;
+	char label[48];
+	snprintf(label, sizeof label, "%s colour", name);
+	if (aa_renderer_image_create(r, &t->color, width, height, AA_SCENE_COLOR_FORMAT,
+				     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+				     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, label, info, err))
+		return -1;
+	snprintf(label, sizeof label, "%s depth", name);
+	if (aa_renderer_image_create(r, &t->depth, width, height, AA_DEPTH_FORMAT,
+				     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, label, info, err))
+		return -1;
+	struct aa_gpu_image *att[2] = {&t->color, &t->depth};
+	return aa_gpu_framebuffer_create(r->gpu, r->scene_pass, att, 2, &t->framebuffer, err);
+}
+
+void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t)
+{
+	if (t->framebuffer)
+		vkDestroyFramebuffer(r->gpu->device, t->framebuffer, NULL);
+	aa_gpu_image_destroy(r->gpu, &t->color);
+	aa_gpu_image_destroy(r->gpu, &t->depth);
+	memset(t, 0, sizeof *t);
+}
+
+void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
+			    float jitter_x_px, float jitter_y_px)
+{
+	const float *bg = r->scene->background;
+	VkClearValue clears[2] = {
+		{.color = {.float32 = {bg[0], bg[1], bg[2], 1.0f}}},
+		{.depthStencil = {0.0f, 0}}, /* reversed-Z: far is 0 */
+	};
+	aa_gpu_begin_pass(cmd, r->scene_pass, t->framebuffer, t->width, t->height, clears, 2);
+	/* NDC spans 2 units over the target: a jitter of j pixels is 2j/size in NDC. */
+	draw_objects(r, cmd, &r->scene_pipeline, &r->scene_cutout_pipeline, 2.0f * jitter_x_px / t->width,
+		     2.0f * jitter_y_px / t->height);
+	vkCmdEndRenderPass(cmd);
+	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	t->depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+}
+
+int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p, const char *frag,
+			      struct aa_gpu_image *source, struct aa_gpu_image *target, bool accumulate,
+			      uint32_t push_size, struct aa_error *err)
+{
+	memset(p, 0, sizeof *p);
+	p->target = target;
+	p->accumulate = accumulate;
+	VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+	VkRenderPass pass = accumulate ? r->accumulate_pass : r->color_pass;
+	struct aa_gpu_graphics_desc d = {
+		.vert = "fullscreen.vert", .frag = frag, .vertex_layout = AA_VERTEX_NONE, .render_pass = pass,
+		.color_count = 1, .samples = 1, .cull = VK_CULL_MODE_NONE,
+		.blend = accumulate ? AA_BLEND_ADD : AA_BLEND_NONE,
+	};
+	if (aa_gpu_layout_create(r->gpu, &type, NULL, 1, push_size, &p->pipeline, err))
+		return -1;
+	d.layout = p->pipeline.layout;
+	struct aa_gpu_image *att[1] = {target};
+	if (aa_gpu_graphics_pipeline_create(r->gpu, &d, &p->pipeline, err) ||
+	    aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &p->pipeline, &p->set, err) ||
+	    aa_gpu_framebuffer_create(r->gpu, pass, att, 1, &p->framebuffer, err))
+		return -1;
+	aa_gpu_write_image(r->gpu, p->set, 0, 0, type, r->gpu->sampler_nearest, source,
+			   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	return 0;
+}
+
+void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
+			       const void *push, uint32_t push_size)
+{
+	VkRenderPass pass = p->accumulate ? r->accumulate_pass : r->color_pass;
+	if (p->accumulate && p->target->layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
+		aa_gpu_image_barrier(cmd, p->target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+	VkClearValue clear = {.color = {.float32 = {0, 0, 0, 0}}};
+	aa_gpu_begin_pass(cmd, pass, p->framebuffer, p->target->width, p->target->height, &clear, 1);
+	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
+	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
+	if (push_size)
+		vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, push_size, push);
+	vkCmdDraw(cmd, 3, 1, 0, 0);
+	vkCmdEndRenderPass(cmd);
+	p->target->layout = p->accumulate ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
+					  : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
+void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p)
+{
+	if (p->framebuffer)
+		vkDestroyFramebuffer(r->gpu->device, p->framebuffer, NULL);
+	aa_gpu_pipeline_destroy(r->gpu, &p->pipeline);
+	memset(p, 0, sizeof *p);
+}

@@ -1,0 +1,133 @@
+/* The renderer: a scene uploaded to the GPU, the scene and shadow passes, full-screen passes, and the
+ * frame context methods render into. Methods use these functions and never see the scene's buffers. */
+#ifndef AA_RENDERER_H
+#define AA_RENDERER_H
+
+#include <stdbool.h>
+
+#include "frame_plan.h"
+#include "gpu/gpu.h"
+#include "job.h"
+#include "scene/scene.h"
+
+#define AA_MAX_LIGHTS 8
+#define AA_SCENE_COLOR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
+#define AA_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
+#define AA_SHADOW_MAP_SIZE 2048
+
+/* std140 layout of `Frame` in shaders/common.glsl */
+struct aa_frame_uniforms {
+	float view_proj[16];
+	float shadow_view_proj[16];
+	float camera_position[4];
+	float ambient[4];
+	int32_t counts[4];
+	struct {
+		float position_type[4];
+		float color_range[4];
+		float shadow[4];
+	} lights[AA_MAX_LIGHTS];
+};
+
+/* std430 `Material` */
+struct aa_material_gpu {
+	float base_color[4];
+	float color2[4];
+	float pattern[4];
+	float shading[4];
+};
+
+/* push constants `Draw` (128 bytes, the guaranteed minimum) */
+struct aa_draw_push {
+	float model[16];
+	float normal_matrix[12];
+	uint32_t material;
+	uint32_t object_id;
+	float jitter_ndc[2];
+};
+
+/* A colour + depth target the scene pass draws into. */
+struct aa_scene_target {
+	struct aa_gpu_image color, depth;
+	VkFramebuffer framebuffer;
+	int width, height;
+};
+
+/* What a method needs to render one frame. */
+struct aa_frame_ctx {
+	int frame;                  /* frame index on the path */
+	int ordinal;                /* 0..frames-1 within the job */
+	double time;                /* seconds */
+	bool cut;                   /* camera cut at this frame: reset history */
+	int width, height;
+	struct aa_camera camera;
+	mat4 view, proj, view_proj; /* unjittered */
+	VkCommandBuffer cmd;
+	struct aa_gpu_timer *timer;
+	struct aa_gpu_image *output; /* set by the method: linear RGBA16F, width x height */
+};
+
+struct aa_renderer {
+	struct aa_gpu *gpu;
+	const struct aa_scene *scene;
+	struct aa_frame_plan plan;
+	int width, height;
+
+	struct aa_gpu_buffer vertices, indices, materials, frame_ubo;
+	uint32_t *mesh_first_index, *mesh_vertex_offset;
+	struct aa_gpu_image *textures;   /* scene->texture_count, plus white at [texture_count] */
+	struct aa_gpu_image shadow_map;  /* AA_SHADOW_MAP_SIZE^2 when the plan has shadows, else 1x1 */
+	VkFramebuffer shadow_framebuffer;
+	VkRenderPass scene_pass, shadow_pass, color_pass, accumulate_pass;
+	struct aa_gpu_pipeline scene_pipeline, scene_cutout_pipeline, shadow_pipeline, shadow_cutout_pipeline;
+	VkDescriptorPool pool;
+	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
+	struct aa_frame_uniforms uniforms;
+	mat4 *models;                    /* per object, this frame */
+	mat4 shadow_view_proj;
+};
+
+int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_frame_plan *plan,
+		       int width, int height, struct aa_renderer **out, struct aa_error *err);
+void aa_renderer_destroy(struct aa_renderer *r);
+
+/* Sets the camera and object transforms for time t and writes the frame uniforms. Call before recording
+ * a frame's command buffers (the uniform buffer is shared by everything recorded for the frame). */
+void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
+			   struct aa_frame_ctx *ctx);
+/* Records the shadow-map pass (only when the plan has one). */
+void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd);
+
+/* Scene targets of any size (single sample); memory is added to info when not NULL. */
+int aa_scene_target_create(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
+			   const char *name, struct aa_method_result *info, struct aa_error *err);
+void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t);
+/* Draws the whole scene into t, with a sub-pixel jitter given in pixels of t. Leaves t->color in
+ * SHADER_READ_ONLY_OPTIMAL. */
+void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
+			    float jitter_x_px, float jitter_y_px);
+
+/* A full-screen pass that reads one sampled image (binding 0) and writes one colour target. */
+struct aa_fullscreen_pass {
+	struct aa_gpu_pipeline pipeline;
+	VkDescriptorSet set;
+	VkFramebuffer framebuffer;
+	struct aa_gpu_image *target;
+	bool accumulate;
+};
+/* accumulate: blend ONE+ONE into a target that keeps its contents (RGBA32F); otherwise overwrite an
+ * RGBA16F target. push_size: bytes of push constants the shader takes. */
+int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p, const char *frag,
+			      struct aa_gpu_image *source, struct aa_gpu_image *target, bool accumulate,
+			      uint32_t push_size, struct aa_error *err);
+void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
+			       const void *push, uint32_t push_size);
+void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p);
+
+/* Creates a GPU image and records it in info->memory under `name`. */
+int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, int width, int height,
+			     VkFormat format, VkImageUsageFlags usage, const char *name,
+			     struct aa_method_result *info, struct aa_error *err);
+void aa_method_result_add_memory(struct aa_method_result *info, const char *name, uint64_t bytes);
+
+#endif

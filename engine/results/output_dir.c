@@ -1,0 +1,84 @@
+/* The layout of a job directory: where each method's frames and diff images go, and writing them. */
+#include <errno.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "results.h"
+
+void aa_results_method_dirname(const char *label, char *out, size_t size)
+{
+	if (size == 0)
+		return;
+	size_t n = 0;
+	for (; label[n] && n + 1 < size; n++) {
+		const char c = label[n];
+		if (c == ':' || c == ',')
+			out[n] = '_';
+		else if (c == '=')
+			out[n] = '-';
+		else if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+			 c == '_' || c == '-')
+			out[n] = c;
+		else
+			out[n] = '_'; /* anything else ('/', spaces, bytes of UTF-8) must not shape the path */
+	}
+	out[n] = '\0';
+	/* "", "." and ".." would name the parent or the directory itself. */
+	if (n == 0 || strspn(out, ".") == n)
+		snprintf(out, size, "_");
+}
+
+void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size)
+{
+	char dirname[AA_LABEL_MAX * 2];
+	aa_results_method_dirname(label, dirname, sizeof dirname);
+	snprintf(out, size, "%s/%s/%04d.png", kind, dirname, ordinal);
+}
+
+/* mkdir -p: creates every missing directory of path up to its last '/'. */
+static int make_parents(char *path, struct aa_error *err)
+{
+	for (char *p = path + 1; *p; p++) {
+		if (*p != '/')
+			continue;
+		*p = '\0';
+		const bool failed = mkdir(path, 0755) < 0 && errno != EEXIST;
+		const int saved = errno;
+		struct stat st;
+		const bool is_dir = !failed && stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+		if (failed || !is_dir) {
+			aa_error_set(err, AA_ERR_IO, "", "cannot create directory %s: %s", path,
+				     failed ? strerror(saved) : "a file of that name exists");
+			*p = '/';
+			return -1;
+		}
+		*p = '/';
+	}
+	return 0;
+}
+
+/* True when a component of path is "..". */
+static bool has_dotdot(const char *path)
+{
+	for (const char *p = path; (p = strstr(p, "..")) != NULL; p += 2)
+		if ((p == path || p[-1] == '/') && (p[2] == '\0' || p[2] == '/'))
+			return true;
+	return false;
+}
+
+int aa_results_write_image(const char *dir, const char *relpath, const struct aa_image_rgba8 *img,
+			   struct aa_error *err)
+{
+	/* relpath comes from aa_results_frame_relpath; refuse anything that could leave dir. */
+	if (!relpath || !*relpath || relpath[0] == '/' || has_dotdot(relpath) || !dir || !*dir)
+		return aa_error_set(err, AA_ERR_INVALID, "", "image path \"%s\" is not a path inside the job directory",
+				    relpath ? relpath : "");
+	char path[4096];
+	if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, relpath) >= sizeof path)
+		return aa_error_set(err, AA_ERR_IO, "", "image path %s/%s is too long", dir, relpath);
+	if (make_parents(path, err) < 0)
+		return -1;
+	return aa_image_write_png(path, img, err);
+}

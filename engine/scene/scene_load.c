@@ -1,0 +1,659 @@
+/* Loading a scene file: finds it by name, parses the JSON and validates every field (with the JSON path
+ * in each error), builds meshes and textures, and frees it all again. Format: docs/scene-format.md. */
+#include <dirent.h>
+#include <errno.h>
+#include <libgen.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "mesh_procedural.h"
+#include "scene_json.h"
+#include "texture.h"
+
+/* ---------------------------------------------------------------- finding scenes */
+
+static int scene_dirs(const char *dirs[3])
+{
+	int n = 0;
+	const char *env = getenv("AALAB_SCENE_DIR");
+	if (env && env[0])
+		dirs[n++] = env;
+#ifdef AA_SOURCE_SCENE_DIR
+	dirs[n++] = AA_SOURCE_SCENE_DIR;
+#endif
+#ifdef AA_INSTALLED_SCENE_DIR
+	dirs[n++] = AA_INSTALLED_SCENE_DIR;
+#endif
+	return n;
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+	size_t a = strlen(s), b = strlen(suffix);
+	return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+static int cmp_names(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+int aa_scene_list(char ***names, int *count)
+{
+	const char *dirs[3];
+	int nd = scene_dirs(dirs), n = 0, cap = 0;
+	char **list = NULL;
+	for (int d = 0; d < nd; d++) {
+		DIR *dir = opendir(dirs[d]);
+		if (!dir)
+			continue;
+		struct dirent *e;
+		while ((e = readdir(dir))) {
+			if (e->d_name[0] == '.' || !ends_with(e->d_name, ".json"))
+				continue;
+			size_t len = strlen(e->d_name) - 5;
+			bool dup = false;
+			for (int i = 0; i < n && !dup; i++)
+				dup = strlen(list[i]) == len && strncmp(list[i], e->d_name, len) == 0;
+			if (dup)
+				continue;
+			if (n == cap) {
+				cap = cap ? cap * 2 : 16;
+				char **nl = realloc(list, (size_t)cap * sizeof *nl);
+				if (!nl)
+					break;
+				list = nl;
+			}
+			if ((list[n] = strndup(e->d_name, len)))
+				n++;
+		}
+		closedir(dir);
+	}
+	if (n > 1)
+		qsort(list, (size_t)n, sizeof *list, cmp_names);
+	*names = list;
+	*count = n;
+	return 0;
+}
+
+int aa_scene_resolve(const char *name_or_path, char *out_path, size_t out_size, struct aa_error *err)
+{
+	const char *name = name_or_path;
+	if (!name || !name[0])
+		return aa_error_set(err, AA_ERR_INVALID, "scene", "no scene given");
+	if (ends_with(name, ".json")) {
+		if (access(name, R_OK) != 0)
+			return aa_error_set(err, AA_ERR_NOT_FOUND, "scene", "scene file '%s' not found", name);
+		if (strlen(name) >= out_size)
+			return aa_error_set(err, AA_ERR_INVALID, "scene", "scene path too long");
+		memcpy(out_path, name, strlen(name) + 1);
+		return 0;
+	}
+	bool ok = name[0] != '.' && strlen(name) < AA_NAME_MAX;
+	for (const char *p = name; *p && ok; p++)
+		ok = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '-' ||
+		     *p == '_' || *p == '.';
+	if (!ok)
+		return aa_error_set(err, AA_ERR_INVALID, "scene",
+				    "'%s' is not a scene name (letters, digits, '-', '_'); for a file give a path "
+				    "ending in .json", name);
+	const char *dirs[3];
+	int nd = scene_dirs(dirs);
+	for (int d = 0; d < nd; d++) {
+		int n = snprintf(out_path, out_size, "%s/%s.json", dirs[d], name);
+		if (n > 0 && (size_t)n < out_size && access(out_path, R_OK) == 0)
+			return 0;
+	}
+	char **names = NULL, list[400] = "";
+	int count = 0;
+	size_t used = 0;
+	aa_scene_list(&names, &count);
+	for (int i = 0; i < count; i++) {
+		int n = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", names[i]);
+		if (n > 0 && (size_t)n < sizeof list - used)
+			used += (size_t)n;
+		free(names[i]);
+	}
+	free(names);
+	return aa_error_set(err, AA_ERR_NOT_FOUND, "scene", "unknown scene '%s' (scenes: %s)", name,
+			    count ? list : "none found; set AALAB_SCENE_DIR");
+}
+
+/* ---------------------------------------------------------------- freeing */
+
+void aa_scene_free(struct aa_scene *scene)
+{
+	if (!scene)
+		return;
+	for (int i = 0; i < scene->mesh_count; i++)
+		aa_mesh_free(&scene->meshes[i]);
+	for (int i = 0; i < scene->texture_count; i++)
+		aa_texture_free(&scene->textures[i]);
+	for (int i = 0; i < scene->path_count; i++)
+		free(scene->paths[i].keys);
+	free(scene->meshes);
+	free(scene->textures);
+	free(scene->materials);
+	free(scene->objects);
+	free(scene->lights);
+	free(scene->paths);
+	free(scene);
+}
+
+/* ---------------------------------------------------------------- parts of a scene */
+
+struct loader {
+	struct sj s;
+	const char *base_dir;
+	struct aa_scene *sc;
+	const json_t *materials, *meshes, *textures; /* the name maps, for lookups and "(materials: ...)" */
+	int default_material;                       /* -1 until an object needs it */
+	size_t texture_bytes;
+	uint64_t triangles;                          /* drawn so far */
+};
+
+/* Index of `name` in a name map (objects keep insertion order, as the arrays were built), or -1. */
+static int map_index(const json_t *map, const char *name)
+{
+	int i = 0;
+	const char *key;
+	json_t *v;
+	json_object_foreach((json_t *)map, key, v) {
+		(void)v;
+		if (strcmp(key, name) == 0)
+			return i;
+		i++;
+	}
+	return -1;
+}
+
+/* Checks a name map (textures, materials, meshes) and returns its size. */
+static int map_size(struct loader *L, const json_t *map, const char *what, int max)
+{
+	char got[64];
+	if (!map)
+		return 0;
+	if (!json_is_object(map))
+		return sj_fail_key(&L->s, what, AA_ERR_INVALID, "expected an object of named %s, got %s", what,
+				   sj_describe(map, got, sizeof got));
+	if (json_object_size(map) > (size_t)max)
+		return sj_fail_key(&L->s, what, AA_ERR_LIMIT, "%zu %s is over the limit of %d", json_object_size(map), what,
+				   max);
+	const char *key;
+	json_t *v;
+	json_object_foreach((json_t *)map, key, v) {
+		(void)v;
+		if (!key[0] || strlen(key) >= AA_NAME_MAX)
+			return sj_fail_key(&L->s, what, AA_ERR_INVALID, "%s names must have 1 to %d characters", what,
+					   AA_NAME_MAX - 1);
+	}
+	return (int)json_object_size(map);
+}
+
+static int load_textures(struct loader *L)
+{
+	struct aa_scene *sc = L->sc;
+	int n = map_size(L, L->textures, "textures", AA_SCENE_MAX_TEXTURES);
+	if (n <= 0)
+		return n;
+	if (!(sc->textures = calloc((size_t)n, sizeof *sc->textures)))
+		return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
+	const char *key;
+	json_t *v;
+	size_t mark = sj_push_key(&L->s, "textures");
+	json_object_foreach((json_t *)L->textures, key, v) {
+		struct aa_texture *t = &sc->textures[sc->texture_count];
+		size_t m2 = sj_push_key(&L->s, key);
+		if (aa_texture_from_json(&L->s, v, L->base_dir, AA_SCENE_MAX_TEXTURE_BYTES - L->texture_bytes, t))
+			return -1;
+		sc->texture_count++;
+		snprintf(t->name, sizeof t->name, "%s", key);
+		L->texture_bytes += aa_texture_bytes(t->width, t->height);
+		sj_pop(&L->s, m2);
+	}
+	sj_pop(&L->s, mark);
+	return 0;
+}
+
+static int read_material(struct loader *L, const json_t *o, struct aa_material *m)
+{
+	static const char *const keys[] = {"color", "pattern", "color2", "scale", "stripe_width", "texture",
+					   "specular", "roughness", "alpha_cutout", "alpha_cutoff", "unlit", NULL};
+	static const char *const patterns[] = {"none", "checker", "stripes", "texture", NULL};
+	static const float grey[4] = {0.6f, 0.6f, 0.6f, 1}, white[4] = {1, 1, 1, 1}, dark[4] = {0.05f, 0.05f, 0.05f, 1};
+	static const float eight[2] = {8, 8}, one[2] = {1, 1};
+	struct sj *s = &L->s;
+	const json_t *tex = json_object_get(o, "texture");
+	float c2[4];
+	int pattern;
+	if (sj_check_keys(s, o, keys) ||
+	    sj_enum(s, o, "pattern", patterns, tex ? AA_PATTERN_TEXTURE : AA_PATTERN_NONE, &pattern) ||
+	    sj_color(s, o, "color", tex ? white : grey, true, m->base_color) ||
+	    sj_color(s, o, "color2", dark, false, c2) ||
+	    sj_floats_or_scalar(s, o, "scale", 2, SJ_CLOSED(1e-3, 1e4), tex ? one : eight, m->scale) ||
+	    sj_float(s, o, "stripe_width", SJ_OPEN(0, 1), 0.5f, &m->stripe_width) ||
+	    sj_float(s, o, "specular", SJ_CLOSED(0, 100), 0.0f, &m->specular) ||
+	    sj_float(s, o, "roughness", SJ_CLOSED(0.01, 1), 0.5f, &m->roughness) ||
+	    sj_bool(s, o, "alpha_cutout", false, &m->alpha_cutout) ||
+	    sj_float(s, o, "alpha_cutoff", SJ_OPEN(0, 1), 0.5f, &m->alpha_cutoff) || sj_bool(s, o, "unlit", false, &m->unlit))
+		return -1;
+	memcpy(m->color2, c2, sizeof m->color2);
+	m->pattern = (enum aa_pattern)pattern;
+	m->texture_index = -1;
+	if (tex) {
+		char name[AA_NAME_MAX], list[300];
+		if (sj_string(s, o, "texture", "", name, sizeof name))
+			return -1;
+		if (pattern != AA_PATTERN_TEXTURE)
+			return sj_fail_key(s, "texture", AA_ERR_INVALID, "a texture needs pattern 'texture' (this one is '%s')",
+					   patterns[pattern]);
+		if ((m->texture_index = map_index(L->textures, name)) < 0) {
+			sj_list_keys(L->textures, list, sizeof list);
+			return sj_fail_key(s, "texture", AA_ERR_INVALID, "unknown texture '%s' (textures: %s)", name, list);
+		}
+	} else if (pattern == AA_PATTERN_TEXTURE) {
+		return sj_fail_key(s, "pattern", AA_ERR_INVALID, "pattern 'texture' needs a 'texture' name");
+	}
+	return 0;
+}
+
+static int load_materials(struct loader *L)
+{
+	struct aa_scene *sc = L->sc;
+	int n = map_size(L, L->materials, "materials", AA_SCENE_MAX_MATERIALS - 1);
+	if (n < 0)
+		return -1;
+	/* One spare slot for the implicit "default" material of objects that name none. */
+	if (!(sc->materials = calloc((size_t)n + 1, sizeof *sc->materials)))
+		return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
+	const char *key;
+	json_t *v;
+	size_t mark = sj_push_key(&L->s, "materials");
+	json_object_foreach((json_t *)L->materials, key, v) {
+		struct aa_material *m = &sc->materials[sc->material_count];
+		size_t m2 = sj_push_key(&L->s, key);
+		if (read_material(L, v, m))
+			return -1;
+		snprintf(m->name, sizeof m->name, "%s", key);
+		sc->material_count++;
+		sj_pop(&L->s, m2);
+	}
+	sj_pop(&L->s, mark);
+	return 0;
+}
+
+static int load_named_meshes(struct loader *L)
+{
+	struct aa_scene *sc = L->sc;
+	const char *key;
+	json_t *v;
+	size_t mark = sj_push_key(&L->s, "meshes");
+	json_object_foreach((json_t *)L->meshes, key, v) {
+		struct aa_mesh *m = &sc->meshes[sc->mesh_count];
+		size_t m2 = sj_push_key(&L->s, key);
+		if (aa_mesh_from_json(&L->s, v, L->base_dir, AA_SCENE_MAX_TRIANGLES, m))
+			return -1;
+		sc->mesh_count++;
+		snprintf(m->name, sizeof m->name, "%s", key);
+		sj_pop(&L->s, m2);
+	}
+	sj_pop(&L->s, mark);
+	return 0;
+}
+
+/* "mesh": a name from "meshes", a bare type name ("sphere": defaults) or an inline spec object. */
+static int object_mesh(struct loader *L, const json_t *o, int *index)
+{
+	struct sj *s = &L->s;
+	struct aa_scene *sc = L->sc;
+	const json_t *spec = json_object_get(o, "mesh");
+	json_t *tmp = NULL;
+	char list[300], got[64];
+	if (json_is_string(spec)) {
+		const char *name = json_string_value(spec);
+		if ((*index = map_index(L->meshes, name)) >= 0)
+			return 0;
+		bool is_type = false;
+		for (int i = 0; aa_mesh_type_names[i]; i++)
+			is_type |= strcmp(name, aa_mesh_type_names[i]) == 0 && strcmp(name, "file") != 0;
+		if (!is_type) {
+			sj_list_keys(L->meshes, list, sizeof list);
+			return sj_fail_key(s, "mesh", AA_ERR_INVALID,
+					   "unknown mesh '%.60s' (meshes: %s; or a type: plane, box, sphere, cylinder, wires, "
+					   "fence, blinds, stairs, wheel, hairball)", name, list);
+		}
+		spec = tmp = json_pack("{ss}", "type", name);
+	} else if (!json_is_object(spec)) {
+		return sj_fail_key(s, "mesh", AA_ERR_INVALID, "expected a mesh name or a mesh object, got %s",
+				   sj_describe(spec, got, sizeof got));
+	}
+	if (sc->mesh_count >= AA_SCENE_MAX_MESHES) {
+		json_decref(tmp);
+		return sj_fail_key(s, "mesh", AA_ERR_LIMIT, "more than %d meshes: share meshes through \"meshes\"",
+				   AA_SCENE_MAX_MESHES);
+	}
+	size_t mark = sj_push_key(s, "mesh");
+	int rc = aa_mesh_from_json(s, spec, L->base_dir, AA_SCENE_MAX_TRIANGLES - L->triangles,
+				   &sc->meshes[sc->mesh_count]);
+	json_decref(tmp);
+	if (rc)
+		return -1;
+	sj_pop(s, mark);
+	*index = sc->mesh_count++;
+	return 0;
+}
+
+static int object_material(struct loader *L, const json_t *o, int *index)
+{
+	struct aa_scene *sc = L->sc;
+	char name[AA_NAME_MAX], list[300];
+	if (!json_object_get(o, "material")) {
+		/* No material named: a shared plain grey "default" (or the scene's own "default"). */
+		if ((*index = map_index(L->materials, "default")) >= 0)
+			return 0;
+		if (L->default_material < 0) {
+			struct aa_material *m = &sc->materials[sc->material_count];
+			*m = (struct aa_material){.name = "default", .base_color = {0.6f, 0.6f, 0.6f, 1},
+						  .scale = {8, 8}, .stripe_width = 0.5f, .texture_index = -1,
+						  .roughness = 0.5f, .alpha_cutoff = 0.5f};
+			L->default_material = sc->material_count++;
+		}
+		*index = L->default_material;
+		return 0;
+	}
+	if (sj_string(&L->s, o, "material", "", name, sizeof name))
+		return -1;
+	if ((*index = map_index(L->materials, name)) < 0) {
+		sj_list_keys(L->materials, list, sizeof list);
+		return sj_fail_key(&L->s, "material", AA_ERR_INVALID, "unknown material '%s' (materials: %s)", name, list);
+	}
+	return 0;
+}
+
+static void set3(float out[3], vec3 v)
+{
+	out[0] = v.x, out[1] = v.y, out[2] = v.z;
+}
+
+static int object_animation(struct sj *s, const json_t *a, vec3 position, struct aa_animation *an)
+{
+	static const char *const keys[] = {"velocity", "oscillate", "spin", NULL};
+	static const char *const osc_keys[] = {"axis", "amplitude", "frequency", NULL};
+	static const char *const spin_keys[] = {"axis", "degrees_per_second", "pivot", NULL};
+	vec3 zero = v3(0, 0, 0), axis, velocity, pivot = position;
+	if (sj_check_keys(s, a, keys) || sj_vec3(s, a, "velocity", SJ_CLOSED(-1e4, 1e4), zero, &velocity))
+		return -1;
+	set3(an->velocity, velocity);
+	const json_t *osc = json_object_get(a, "oscillate"), *spin = json_object_get(a, "spin");
+	set3(an->spin_axis, v3(0, 1, 0));
+	if (osc) {
+		size_t mark = sj_push_key(s, "oscillate");
+		if (sj_check_keys(s, osc, osc_keys) || sj_require(s, osc, "axis") ||
+		    sj_vec3(s, osc, "axis", SJ_CLOSED(-1e3, 1e3), zero, &axis) ||
+		    sj_float(s, osc, "amplitude", SJ_CLOSED(0, 1e4), 1.0f, &an->oscillate_amplitude) ||
+		    sj_float(s, osc, "frequency", SJ_CLOSED(0, 1e3), 0.5f, &an->oscillate_frequency))
+			return -1;
+		if (v3_length(axis) < 1e-6f)
+			return sj_fail_key(s, "axis", AA_ERR_INVALID, "axis must not be zero");
+		set3(an->oscillate_axis, v3_normalize(axis));
+		sj_pop(s, mark);
+	}
+	if (spin) {
+		size_t mark = sj_push_key(s, "spin");
+		if (sj_check_keys(s, spin, spin_keys) || sj_vec3(s, spin, "axis", SJ_CLOSED(-1e3, 1e3), v3(0, 1, 0), &axis) ||
+		    sj_require(s, spin, "degrees_per_second") ||
+		    sj_float(s, spin, "degrees_per_second", SJ_CLOSED(-1e6, 1e6), 0, &an->spin_degrees_per_second) ||
+		    sj_vec3(s, spin, "pivot", SJ_ANY, position, &pivot))
+			return -1;
+		if (v3_length(axis) < 1e-6f)
+			return sj_fail_key(s, "axis", AA_ERR_INVALID, "axis must not be zero");
+		set3(an->spin_axis, v3_normalize(axis));
+		sj_pop(s, mark);
+	}
+	/* The spin pivot defaults to the object's position, so objects spin in place. */
+	set3(an->pivot, pivot);
+	an->active = v3_length(velocity) > 0 || (an->oscillate_amplitude > 0 && an->oscillate_frequency > 0) ||
+		     an->spin_degrees_per_second != 0;
+	return 0;
+}
+
+static int read_object(struct loader *L, const json_t *o, int index, struct aa_object *obj)
+{
+	static const char *const keys[] = {"name", "mesh", "material", "position", "rotation", "scale", "animation", NULL};
+	static const float one[3] = {1, 1, 1};
+	struct sj *s = &L->s;
+	char def_name[32];
+	vec3 pos, rot;
+	float scale[3];
+	snprintf(def_name, sizeof def_name, "object%d", index);
+	if (sj_check_keys(s, o, keys) || sj_string(s, o, "name", def_name, obj->name, sizeof obj->name) ||
+	    sj_require(s, o, "mesh") || object_mesh(L, o, &obj->mesh_index) ||
+	    object_material(L, o, &obj->material_index) || sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &pos) ||
+	    sj_vec3(s, o, "rotation", SJ_CLOSED(-3600, 3600), v3(0, 0, 0), &rot) ||
+	    sj_floats_or_scalar(s, o, "scale", 3, SJ_CLOSED(1e-4, 1e5), one, scale))
+		return -1;
+	/* Rotation in degrees about x, then y, then z (R = Rz Ry Rx), applied after scale. */
+	const float d2r = 3.14159265358979f / 180.0f;
+	mat4 r = mat4_mul(mat4_rotate(v3(0, 0, 1), rot.z * d2r),
+			  mat4_mul(mat4_rotate(v3(0, 1, 0), rot.y * d2r), mat4_rotate(v3(1, 0, 0), rot.x * d2r)));
+	obj->transform = mat4_mul(mat4_translate(pos), mat4_mul(r, mat4_scale(v3(scale[0], scale[1], scale[2]))));
+	obj->model_id = (uint32_t)index + 1;
+	const json_t *anim = json_object_get(o, "animation");
+	if (anim) {
+		size_t mark = sj_push_key(s, "animation");
+		if (object_animation(s, anim, pos, &obj->animation))
+			return -1;
+		sj_pop(s, mark);
+	}
+	L->triangles += L->sc->meshes[obj->mesh_index].index_count / 3;
+	if (L->triangles > AA_SCENE_MAX_TRIANGLES)
+		return sj_fail(s, AA_ERR_LIMIT, "the scene draws more than %u triangles, the limit",
+			       (unsigned)AA_SCENE_MAX_TRIANGLES);
+	return 0;
+}
+
+static int load_objects(struct loader *L, const json_t *objects)
+{
+	struct aa_scene *sc = L->sc;
+	struct sj *s = &L->s;
+	char got[64];
+	if (!objects)
+		return sj_fail_key(s, "objects", AA_ERR_INVALID, "missing required key 'objects' (a scene needs objects)");
+	if (!json_is_array(objects))
+		return sj_fail_key(s, "objects", AA_ERR_INVALID, "expected an array of objects, got %s",
+				   sj_describe(objects, got, sizeof got));
+	size_t n = json_array_size(objects);
+	if (n == 0)
+		return sj_fail_key(s, "objects", AA_ERR_INVALID, "a scene needs at least one object");
+	if (n > AA_SCENE_MAX_OBJECTS)
+		return sj_fail_key(s, "objects", AA_ERR_LIMIT, "%zu objects is over the limit of %d", n,
+				   AA_SCENE_MAX_OBJECTS);
+	int named = map_size(L, L->meshes, "meshes", AA_SCENE_MAX_MESHES);
+	if (named < 0)
+		return -1;
+	/* Room for the named meshes plus one inline mesh per object (capped at the mesh limit). */
+	size_t mesh_slots = (size_t)named + n < AA_SCENE_MAX_MESHES ? (size_t)named + n : AA_SCENE_MAX_MESHES;
+	if (!(sc->meshes = calloc(mesh_slots, sizeof *sc->meshes)) || !(sc->objects = calloc(n, sizeof *sc->objects)))
+		return sj_fail(s, AA_ERR_INTERNAL, "out of memory");
+	if (load_named_meshes(L))
+		return -1;
+	size_t mark = sj_push_key(s, "objects");
+	for (size_t i = 0; i < n; i++) {
+		size_t m2 = sj_push_index(s, i);
+		if (read_object(L, json_array_get(objects, i), (int)i, &sc->objects[i]))
+			return -1;
+		sc->object_count++;
+		sj_pop(s, m2);
+	}
+	sj_pop(s, mark);
+	return 0;
+}
+
+static int read_light(struct sj *s, const json_t *o, struct aa_light *l, int *shadow_casters)
+{
+	static const char *const types[] = {"directional", "point", NULL};
+	static const char *const dir_keys[] = {"type", "direction", "color", "intensity", "casts_shadow", NULL};
+	static const char *const point_keys[] = {"type", "position", "color", "intensity", "range", "casts_shadow", NULL};
+	static const float white[4] = {1, 1, 1, 1};
+	float color[4];
+	int type;
+	if (sj_expect_object(s, o) || sj_require(s, o, "type") || sj_enum(s, o, "type", types, 0, &type) ||
+	    sj_check_keys(s, o, type == AA_LIGHT_DIRECTIONAL ? dir_keys : point_keys) ||
+	    sj_color(s, o, "color", white, false, color) ||
+	    sj_float(s, o, "intensity", SJ_CLOSED(0, 1e4), 1.0f, &l->intensity) ||
+	    sj_float(s, o, "range", SJ_NONNEG, 0.0f, &l->range) || sj_bool(s, o, "casts_shadow", false, &l->casts_shadow))
+		return -1;
+	l->type = (enum aa_light_type)type;
+	memcpy(l->color, color, sizeof l->color);
+	vec3 v;
+	if (l->type == AA_LIGHT_DIRECTIONAL) {
+		if (sj_require(s, o, "direction") || sj_vec3(s, o, "direction", SJ_CLOSED(-1e3, 1e3), v3(0, -1, 0), &v))
+			return -1;
+		if (v3_length(v) < 1e-6f)
+			return sj_fail_key(s, "direction", AA_ERR_INVALID, "direction must not be zero");
+		v = v3_normalize(v);
+		l->direction[0] = v.x, l->direction[1] = v.y, l->direction[2] = v.z;
+	} else {
+		if (sj_require(s, o, "position") || sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &v))
+			return -1;
+		l->position[0] = v.x, l->position[1] = v.y, l->position[2] = v.z;
+		/* Shadow maps are rendered for directional lights only. */
+		if (l->casts_shadow)
+			return sj_fail_key(s, "casts_shadow", AA_ERR_INVALID, "only directional lights can cast shadows");
+	}
+	if (l->casts_shadow && ++*shadow_casters > 1)
+		return sj_fail_key(s, "casts_shadow", AA_ERR_INVALID, "only one light may cast shadows");
+	return 0;
+}
+
+static int load_lights(struct loader *L, const json_t *lights)
+{
+	struct sj *s = &L->s;
+	int casters = 0;
+	if (!lights)
+		return 0;
+	size_t mark = sj_push_key(s, "lights");
+	if (!json_is_array(lights) || json_array_size(lights) > AA_SCENE_MAX_LIGHTS)
+		return sj_fail(s, AA_ERR_INVALID, "expected an array of at most %d lights", AA_SCENE_MAX_LIGHTS);
+	size_t n = json_array_size(lights);
+	if (n && !(L->sc->lights = calloc(n, sizeof *L->sc->lights)))
+		return sj_fail(s, AA_ERR_INTERNAL, "out of memory");
+	for (size_t i = 0; i < n; i++) {
+		size_t m2 = sj_push_index(s, i);
+		if (read_light(s, json_array_get(lights, i), &L->sc->lights[i], &casters))
+			return -1;
+		L->sc->light_count++;
+		sj_pop(s, m2);
+	}
+	sj_pop(s, mark);
+	return 0;
+}
+
+/* ---------------------------------------------------------------- whole scene */
+
+static int load_root(struct loader *L, const json_t *root, const char *default_name)
+{
+	static const char *const keys[] = {"name", "description", "fps", "background", "ambient", "textures",
+					   "materials", "meshes", "objects", "lights", "camera", "paths", NULL};
+	static const float bg[4] = {0.02f, 0.02f, 0.025f, 1}, amb[4] = {0.05f, 0.05f, 0.05f, 1};
+	struct aa_scene *sc = L->sc;
+	struct sj *s = &L->s;
+	float c[4];
+	if (sj_check_keys(s, root, keys) || sj_string(s, root, "name", default_name, sc->name, sizeof sc->name) ||
+	    sj_string(s, root, "description", "", sc->description, sizeof sc->description) ||
+	    sj_number(s, root, "fps", SJ_CLOSED(1, 1000), 30.0, &sc->fps) || sj_color(s, root, "background", bg, false, c))
+		return -1;
+	memcpy(sc->background, c, sizeof sc->background);
+	if (sj_color(s, root, "ambient", amb, false, c))
+		return -1;
+	memcpy(sc->ambient, c, sizeof sc->ambient);
+	L->textures = json_object_get(root, "textures");
+	L->materials = json_object_get(root, "materials");
+	L->meshes = json_object_get(root, "meshes");
+	if (load_textures(L) || load_materials(L) || load_objects(L, json_object_get(root, "objects")) ||
+	    load_lights(L, json_object_get(root, "lights")))
+		return -1;
+	struct aa_camera cam;
+	const json_t *camera = json_object_get(root, "camera");
+	if (!camera)
+		return sj_fail_key(s, "camera", AA_ERR_INVALID, "missing required key 'camera' (position and target)");
+	size_t mark = sj_push_key(s, "camera");
+	if (aa_camera_from_json(s, camera, NULL, true, &cam))
+		return -1;
+	sj_pop(s, mark);
+	return aa_paths_from_json(s, json_object_get(root, "paths"), &cam, sc);
+}
+
+static int load_json(json_t *root, const char *display, const char *base_dir, const char *file,
+		     struct aa_scene **out, struct aa_error *err)
+{
+	struct loader L = {.base_dir = base_dir, .default_material = -1};
+	char stem[AA_NAME_MAX] = "scene";
+	sj_init(&L.s, display, err);
+	*out = NULL;
+	if (display && display[0]) {
+		const char *b = strrchr(display, '/');
+		snprintf(stem, sizeof stem, "%s", b ? b + 1 : display);
+		if (ends_with(stem, ".json"))
+			stem[strlen(stem) - 5] = '\0';
+	}
+	if (!(L.sc = calloc(1, sizeof *L.sc))) {
+		json_decref(root);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	}
+	snprintf(L.sc->file, sizeof L.sc->file, "%s", file ? file : "");
+	int rc = load_root(&L, root, stem);
+	json_decref(root);
+	if (rc) {
+		aa_scene_free(L.sc);
+		return -1;
+	}
+	*out = L.sc;
+	return 0;
+}
+
+static int json_error(struct aa_error *err, const char *display, const json_error_t *je)
+{
+	return aa_error_set(err, AA_ERR_INVALID, "", "%s:%d:%d: invalid JSON: %s", display, je->line, je->column,
+			    je->text);
+}
+
+int aa_scene_load_string(const char *json_text, const char *display_name, const char *base_dir,
+			 struct aa_scene **out, struct aa_error *err)
+{
+	const char *display = display_name && display_name[0] ? display_name : "<string>";
+	json_error_t je;
+	*out = NULL;
+	if (strlen(json_text) > AA_SCENE_MAX_FILE_BYTES)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene text is over the limit of %u bytes", display,
+				    (unsigned)AA_SCENE_MAX_FILE_BYTES);
+	json_t *root = json_loads(json_text, JSON_REJECT_DUPLICATES, &je);
+	if (!root)
+		return json_error(err, display, &je);
+	return load_json(root, display, base_dir, NULL, out, err);
+}
+
+int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
+{
+	struct stat st;
+	json_error_t je;
+	*out = NULL;
+	if (stat(path, &st) != 0)
+		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "",
+				    "scene file '%s' %s", path, errno == ENOENT ? "not found" : strerror(errno));
+	if (!S_ISREG(st.st_mode))
+		return aa_error_set(err, AA_ERR_IO, "", "scene file '%s' is not a regular file", path);
+	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
+				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
+	json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
+	if (!root)
+		return json_error(err, path, &je);
+	char dir[PATH_MAX];
+	snprintf(dir, sizeof dir, "%s", path);
+	return load_json(root, path, dirname(dir), path, out, err);
+}

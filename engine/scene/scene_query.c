@@ -1,0 +1,84 @@
+/* Questions the renderer and the frame plan ask of a scene: where an object is at time t, and which
+ * effects (motion, cut-outs, shadows) the scene calls for. */
+#include <math.h>
+
+#include "scene.h"
+
+static vec3 f3(const float a[3])
+{
+	return v3(a[0], a[1], a[2]);
+}
+
+mat4 aa_object_model_matrix(const struct aa_object *object, double t)
+{
+	const struct aa_animation *a = &object->animation;
+	if (!a->active || !isfinite(t))
+		return object->transform;
+	/* Phases are reduced in double before going to float so long runs stay smooth. */
+	double phase = fmod((double)a->oscillate_frequency * t, 1.0);
+	float osc = a->oscillate_amplitude * (float)sin(2.0 * 3.14159265358979323846 * phase);
+	vec3 move = v3_add(v3_scale(f3(a->velocity), (float)t), v3_scale(f3(a->oscillate_axis), osc));
+	mat4 m = object->transform;
+	if (a->spin_degrees_per_second != 0.0f) {
+		double deg = fmod((double)a->spin_degrees_per_second * t, 360.0);
+		vec3 pivot = f3(a->pivot);
+		mat4 spin = mat4_mul(mat4_translate(pivot),
+				     mat4_mul(mat4_rotate(f3(a->spin_axis), (float)(deg * 3.14159265358979323846 / 180.0)),
+					      mat4_translate(v3_scale(pivot, -1.0f))));
+		m = mat4_mul(spin, m);
+	}
+	return mat4_mul(mat4_translate(move), m);
+}
+
+bool aa_scene_has_animation(const struct aa_scene *scene)
+{
+	for (int i = 0; i < scene->object_count; i++)
+		if (scene->objects[i].animation.active)
+			return true;
+	return false;
+}
+
+bool aa_scene_has_cutout(const struct aa_scene *scene)
+{
+	for (int i = 0; i < scene->object_count; i++) {
+		int m = scene->objects[i].material_index;
+		if (m >= 0 && m < scene->material_count && scene->materials[m].alpha_cutout)
+			return true;
+	}
+	return false;
+}
+
+bool aa_scene_has_shadow_caster_light(const struct aa_scene *scene)
+{
+	for (int i = 0; i < scene->light_count; i++)
+		if (scene->lights[i].casts_shadow)
+			return true;
+	return false;
+}
+
+uint64_t aa_scene_triangle_count(const struct aa_scene *scene)
+{
+	uint64_t n = 0;
+	for (int i = 0; i < scene->object_count; i++) {
+		int m = scene->objects[i].mesh_index;
+		if (m >= 0 && m < scene->mesh_count)
+			n += scene->meshes[m].index_count / 3;
+	}
+	return n;
+}
+
+size_t aa_scene_bytes(const struct aa_scene *scene)
+{
+	size_t n = 0;
+	for (int i = 0; i < scene->mesh_count; i++)
+		n += (size_t)scene->meshes[i].vertex_count * sizeof(struct aa_vertex) +
+		     (size_t)scene->meshes[i].index_count * sizeof(uint32_t);
+	for (int i = 0; i < scene->texture_count; i++) {
+		const struct aa_texture *t = &scene->textures[i];
+		for (int l = 0; l < t->mip_levels; l++) {
+			int w = t->width >> l, h = t->height >> l;
+			n += (size_t)(w > 0 ? w : 1) * (size_t)(h > 0 ? h : 1) * 4;
+		}
+	}
+	return n;
+}

@@ -1,0 +1,29 @@
+/* Textures for scenes: image files and generated text, each with a full mip chain built on the CPU. */
+#ifndef AA_TEXTURE_H
+#define AA_TEXTURE_H
+
+#include "scene.h"
+
+void aa_texture_free(struct aa_texture *tex);
+/* 1 + floor(log2(max(w, h))). */
+int aa_texture_mip_count(int width, int height);
+/* CPU bytes of a width x height RGBA8 texture with all its mips. */
+size_t aa_texture_bytes(int width, int height);
+
+/* Copies w x h sRGB RGBA8 pixels as level 0 and builds the mips with a box filter in linear light
+ * (colour weighted by alpha, so cut-out edges do not darken). */
+int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int width, int height,
+			  struct aa_error *err);
+
+/* Renders text with the 5x7 font: each dot becomes scale x scale texels, glyphs sit in 6x8-dot cells,
+ * `padding` dots of background surround the text; '\n' starts a new line (lines centred when `center`).
+ * Colours are linear RGBA. Characters outside the font are an error. */
+int aa_texture_text(struct aa_texture *out, const char *text, const float fg[4], const float bg[4], int scale,
+		    int padding, bool center, struct aa_error *err);
+
+/* font5x7.c: a glyph's 7 rows, bit 4 = leftmost of the 5 columns; lower case maps to upper case.
+ * Returns -1 for characters the font lacks. */
+int aa_font5x7_glyph(int c, uint8_t rows[7]);
+const char *aa_font5x7_charset(void);
+
+#endif

@@ -1,0 +1,20 @@
+#!/bin/sh
+# Installs the Debian 12 packages aalab needs to build, test and run (DESIGN.md, "Dependencies").
+set -e
+packages="build-essential autoconf automake pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libopenimageio-dev openimageio-tools libjansson-dev libassimp-dev libcmocka-dev
+  python3 python3-numpy python3-skimage"
+missing=""
+for p in $packages; do
+	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -z "$missing" ]; then
+	echo "install-deps: all packages present"
+	exit 0
+fi
+echo "install-deps: installing$missing"
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends $missing

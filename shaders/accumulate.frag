@@ -1,0 +1,9 @@
+#version 450
+// Reference accumulation: adds one jittered render into the float accumulation target (blend ONE+ONE).
+layout(set = 0, binding = 0) uniform sampler2D source;
+layout(location = 0) out vec4 out_color;
+
+void main()
+{
+	out_color = texelFetch(source, ivec2(gl_FragCoord.xy), 0);
+}

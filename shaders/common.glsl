@@ -1,0 +1,47 @@
+// Shared declarations of the scene passes: the per-frame uniform block, materials and push constants.
+// Must match struct aa_frame_uniforms / aa_material_gpu / aa_draw_push in engine/renderer.h.
+
+#define MAX_LIGHTS 8
+#define MATERIAL_CUTOUT 1u
+#define MATERIAL_UNLIT 2u
+#define PATTERN_NONE 0u
+#define PATTERN_CHECKER 1u
+#define PATTERN_STRIPES 2u
+#define PATTERN_TEXTURE 3u
+
+struct Light {
+	vec4 position_type;   // xyz: position (point) or travel direction (directional); w: 0 dir, 1 point
+	vec4 color_range;     // rgb: colour * intensity; w: range (0 = none)
+	vec4 shadow;          // x: 1 if this light uses the shadow map
+};
+
+layout(std140, set = 0, binding = 0) uniform Frame {
+	mat4 view_proj;
+	mat4 shadow_view_proj;
+	vec4 camera_position;
+	vec4 ambient;
+	ivec4 counts;         // x: light count, y: shadow map enabled
+	Light lights[MAX_LIGHTS];
+} frame;
+
+struct Material {
+	vec4 base_color;
+	vec4 color2;          // rgb; w: pattern
+	vec4 pattern;         // xy: scale, z: stripe width
+	vec4 shading;         // x: specular, y: roughness, z: alpha cutoff, w: flags
+};
+
+layout(std430, set = 0, binding = 1) readonly buffer Materials {
+	Material materials[];
+};
+
+layout(set = 0, binding = 2) uniform sampler2D material_texture;
+layout(set = 0, binding = 3) uniform sampler2DShadow shadow_map;
+
+layout(push_constant) uniform Draw {
+	mat4 model;
+	vec4 normal_matrix[3];  // inverse-transpose of model's upper 3x3, as columns
+	uint material;
+	uint object_id;
+	vec2 jitter_ndc;        // sub-pixel jitter added after projection (clip.xy += jitter * clip.w)
+} draw;

@@ -1,0 +1,25 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Scene geometry: world-space position and normal; jitter is a translation applied after the projection,
+// so every depth moves by the same sub-pixel amount (seed 000 applied it before, which is wrong).
+#include "common.glsl"
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+
+void main()
+{
+	vec4 world = draw.model * vec4(in_position, 1.0);
+	mat3 nm = mat3(draw.normal_matrix[0].xyz, draw.normal_matrix[1].xyz, draw.normal_matrix[2].xyz);
+	out_world = world.xyz;
+	out_normal = nm * in_normal;
+	out_uv = in_uv;
+	vec4 clip = frame.view_proj * world;
+	clip.xy += draw.jitter_ndc * clip.w;
+	gl_Position = clip;
+}

@@ -1,0 +1,16 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Shadow map of alpha cut-out materials: discarded texels cast no shadow.
+#include "common.glsl"
+
+layout(location = 0) in vec2 in_uv;
+
+void main()
+{
+	Material m = materials[draw.material];
+	float a = m.base_color.a;
+	if (uint(m.color2.w) == PATTERN_TEXTURE)
+		a *= texture(material_texture, in_uv).a;
+	if (a < m.shading.z)
+		discard;
+}

@@ -1,0 +1,52 @@
+#!/bin/sh
+# `aalab run` end to end: results.json has the documented fields, images and report are written, and
+# running the same job twice gives bitwise-identical images.
+. "$(dirname "$0")/lib.sh"
+
+job="--scene thin-wires --methods none,ssaa:4 --frames 2 --size 96x54 --reference-samples 8 --quiet"
+expect_status 0 "small job runs" -- "$AALAB" run $job --out "$TMP/a"
+grep -q "ssaa:samples=4\|ssaa:4" "$TMP/out" && pass "table lists ssaa" || fail "table lacks ssaa: $(cat "$TMP/out")"
+for f in results.json report.html frames/reference/0000.png frames/none/0001.png diff/none/0000.png; do
+	[ -s "$TMP/a/$f" ] && pass "wrote $f" || fail "missing $f"
+done
+grep -q "<svg" "$TMP/a/report.html" && pass "report has an SVG chart" || fail "report has no SVG"
+
+/usr/bin/python3 - "$TMP/a/results.json" <<'PY' && pass "results.json has the documented fields" || fail "results.json fields"
+import json, math, sys
+r = json.load(open(sys.argv[1]))
+def walk(v):
+    if isinstance(v, float):
+        assert math.isfinite(v), v
+    elif isinstance(v, dict):
+        [walk(x) for x in v.values()]
+    elif isinstance(v, list):
+        [walk(x) for x in v]
+walk(r)
+assert r["reference"]["samples"] == 8
+assert "convergence_psnr" in r["reference"]
+names = [p["pass"] for p in r["passes"]]
+assert "scene-forward" in names and "reference-accumulate" in names, names
+ms = {m["label"]: m for m in r["methods"]}
+assert len(ms) == 2, ms.keys()
+for m in r["methods"]:
+    assert m["gpu_ms"]["median"] > 0
+    assert m["memory_bytes"] > 0
+    assert m["metrics"]["psnr"]["mean"] is None or m["metrics"]["psnr"]["mean"] > 0
+    assert 0 < m["metrics"]["ssim"]["mean"] <= 1
+    assert len(m["metrics"]["psnr"]["per_frame"]) == 2
+none, ssaa = r["methods"][0], r["methods"][1]
+assert ssaa["metrics"]["psnr"]["mean"] > none["metrics"]["psnr"]["mean"], "ssaa must beat none"
+assert ssaa["memory_bytes"] > none["memory_bytes"]
+PY
+
+expect_status 0 "same job again" -- "$AALAB" run $job --out "$TMP/b"
+same=1
+for f in $(cd "$TMP/a" && find frames diff -name '*.png'); do
+	cmp -s "$TMP/a/$f" "$TMP/b/$f" || { same=0; fail "$f differs between two runs"; }
+done
+[ $same -eq 1 ] && pass "two runs give bitwise-identical images"
+
+expect_status 0 "--json prints results" -- "$AALAB" run $job --no-images --json --out "$TMP/c"
+/usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$TMP/out" && pass "--json output parses" || fail "--json output is not JSON"
+[ ! -d "$TMP/c/frames" ] && pass "--no-images writes no frames" || fail "--no-images wrote frames"
+finish
