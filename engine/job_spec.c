@@ -299,12 +299,16 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->first_frame = 0;
 	spec->reference_samples = 64;
 	spec->keep_frames = true;
-	const struct aa_method *none = aa_method_find("none");
-	if (none) {
-		spec->method_count = 1;
-		spec->methods[0].method = none;
-		aa_method_defaults(none, &spec->methods[0].params);
-		aa_method_label(none, &spec->methods[0].params, spec->methods[0].label, sizeof spec->methods[0].label);
+	/* the default comparison: no AA against 16x supersampling */
+	const char *defaults[] = {"none", "ssaa"};
+	for (int i = 0; i < 2; i++) {
+		struct aa_method_spec *m = &spec->methods[spec->method_count];
+		m->method = aa_method_find(defaults[i]);
+		if (!m->method)
+			continue;
+		aa_method_defaults(m->method, &m->params);
+		aa_method_label(m->method, &m->params, m->label, sizeof m->label);
+		spec->method_count++;
 	}
 }
 

@@ -151,14 +151,7 @@ static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 		.color_count = 1, .color_formats = {AA_SCENE_COLOR_FORMAT}, .depth_format = AA_DEPTH_FORMAT,
 		.samples = 1,
 	};
-	struct aa_gpu_pass_desc color = {.color_count = 1, .color_formats = {AA_SCENE_COLOR_FORMAT}, .samples = 1};
-	struct aa_gpu_pass_desc accum = {
-		.color_count = 1, .color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT}, .color_load = {true},
-		.samples = 1,
-	};
-	if (aa_gpu_render_pass_create(g, &scene, &r->scene_pass, err) ||
-	    aa_gpu_render_pass_create(g, &color, &r->color_pass, err) ||
-	    aa_gpu_render_pass_create(g, &accum, &r->accumulate_pass, err))
+	if (aa_gpu_render_pass_create(g, &scene, &r->scene_pass, err))
 		return -1;
 	VkDescriptorType types[4] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
@@ -254,19 +247,17 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	vkDeviceWaitIdle(g->device);
 	aa_gpu_pipeline_destroy(g, &r->shadow_cutout_pipeline);
 	aa_gpu_pipeline_destroy(g, &r->shadow_pipeline);
-	/* the cut-out pipeline borrows the scene pipeline's layout */
-	if (r->scene_cutout_pipeline.pipeline)
-		vkDestroyPipeline(g->device, r->scene_cutout_pipeline.pipeline, NULL);
-	if (r->shadow_pipeline.pipeline == VK_NULL_HANDLE && r->shadow_cutout_pipeline.pipeline == VK_NULL_HANDLE) {
-		/* nothing else borrowed the layout */
-	}
+	/* these borrow the scene pipeline's layout, so they own only their VkPipeline */
+	aa_gpu_pipeline_destroy(g, &r->scene_cutout_pipeline);
 	aa_gpu_pipeline_destroy(g, &r->scene_pipeline);
 	if (r->pool)
 		vkDestroyDescriptorPool(g->device, r->pool, NULL);
-	VkRenderPass passes[] = {r->scene_pass, r->shadow_pass, r->color_pass, r->accumulate_pass};
+	VkRenderPass passes[] = {r->scene_pass, r->shadow_pass};
 	for (size_t i = 0; i < sizeof passes / sizeof passes[0]; i++)
 		if (passes[i])
 			vkDestroyRenderPass(g->device, passes[i], NULL);
+	for (int i = 0; i < r->color_pass_count; i++)
+		vkDestroyRenderPass(g->device, r->color_passes[i].pass, NULL);
 	if (r->shadow_framebuffer)
 		vkDestroyFramebuffer(g->device, r->shadow_framebuffer, NULL);
 	aa_gpu_image_destroy(g, &r->shadow_map);
@@ -479,49 +470,72 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 	t->depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 }
 
-int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p, const char *frag,
-			      struct aa_gpu_image *source, struct aa_gpu_image *target, bool accumulate,
-			      uint32_t push_size, struct aa_error *err)
+int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,
+			   struct aa_error *err)
+{
+	for (int i = 0; i < r->color_pass_count; i++)
+		if (r->color_passes[i].format == format && r->color_passes[i].load == load) {
+			*out = r->color_passes[i].pass;
+			return 0;
+		}
+	if (r->color_pass_count == (int)(sizeof r->color_passes / sizeof r->color_passes[0]))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "too many colour pass formats");
+	struct aa_gpu_pass_desc d = {.color_count = 1, .color_formats = {format}, .color_load = {load},
+				     .samples = 1};
+	if (aa_gpu_render_pass_create(r->gpu, &d, out, err))
+		return -1;
+	r->color_passes[r->color_pass_count].format = format;
+	r->color_passes[r->color_pass_count].load = load;
+	r->color_passes[r->color_pass_count++].pass = *out;
+	return 0;
+}
+
+int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p,
+			      const struct aa_fullscreen_desc *d, struct aa_error *err)
 {
 	memset(p, 0, sizeof *p);
-	p->target = target;
-	p->accumulate = accumulate;
-	VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-	VkRenderPass pass = accumulate ? r->accumulate_pass : r->color_pass;
-	struct aa_gpu_graphics_desc d = {
-		.vert = "fullscreen.vert", .frag = frag, .vertex_layout = AA_VERTEX_NONE, .render_pass = pass,
-		.color_count = 1, .samples = 1, .cull = VK_CULL_MODE_NONE,
-		.blend = accumulate ? AA_BLEND_ADD : AA_BLEND_NONE,
+	p->target = d->target;
+	p->load = d->accumulate || d->keep;
+	VkDescriptorType types[AA_PASS_MAX_SOURCES];
+	for (int i = 0; i < d->source_count; i++)
+		types[i] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+	if (aa_renderer_color_pass(r, d->target->format, p->load, &p->render_pass, err) ||
+	    aa_gpu_layout_create(r->gpu, types, NULL, d->source_count, d->push_size, &p->pipeline, err))
+		return -1;
+	struct aa_gpu_graphics_desc g = {
+		.vert = "fullscreen.vert", .frag = d->frag, .vertex_layout = AA_VERTEX_NONE,
+		.render_pass = p->render_pass, .color_count = 1, .samples = 1, .cull = VK_CULL_MODE_NONE,
+		.blend = d->accumulate ? AA_BLEND_ADD : AA_BLEND_NONE, .layout = p->pipeline.layout,
+		.frag_specialization = d->specialization,
 	};
-	if (aa_gpu_layout_create(r->gpu, &type, NULL, 1, push_size, &p->pipeline, err))
-		return -1;
-	d.layout = p->pipeline.layout;
-	struct aa_gpu_image *att[1] = {target};
-	if (aa_gpu_graphics_pipeline_create(r->gpu, &d, &p->pipeline, err) ||
+	struct aa_gpu_image *att[1] = {d->target};
+	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
 	    aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &p->pipeline, &p->set, err) ||
-	    aa_gpu_framebuffer_create(r->gpu, pass, att, 1, &p->framebuffer, err))
+	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, 1, &p->framebuffer, err))
 		return -1;
-	aa_gpu_write_image(r->gpu, p->set, 0, 0, type, r->gpu->sampler_nearest, source,
-			   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	for (int i = 0; i < d->source_count; i++)
+		aa_gpu_write_image(r->gpu, p->set, (uint32_t)i, 0, types[i],
+				   d->linear[i] ? r->gpu->sampler_linear_clamp : r->gpu->sampler_nearest,
+				   d->sources[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 	return 0;
 }
 
 void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
 			       const void *push, uint32_t push_size)
 {
-	VkRenderPass pass = p->accumulate ? r->accumulate_pass : r->color_pass;
-	if (p->accumulate && p->target->layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
+	(void)r;
+	if (p->load && p->target->layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
 		aa_gpu_image_barrier(cmd, p->target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 	VkClearValue clear = {.color = {.float32 = {0, 0, 0, 0}}};
-	aa_gpu_begin_pass(cmd, pass, p->framebuffer, p->target->width, p->target->height, &clear, 1);
+	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, p->target->width, p->target->height, &clear, 1);
 	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
 	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
 	if (push_size)
 		vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, push_size, push);
 	vkCmdDraw(cmd, 3, 1, 0, 0);
 	vkCmdEndRenderPass(cmd);
-	p->target->layout = p->accumulate ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
-					  : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	p->target->layout = p->load ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
+				    : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
 void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p)

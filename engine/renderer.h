@@ -78,7 +78,9 @@ struct aa_renderer {
 	struct aa_gpu_image *textures;   /* scene->texture_count, plus white at [texture_count] */
 	struct aa_gpu_image shadow_map;  /* AA_SHADOW_MAP_SIZE^2 when the plan has shadows, else 1x1 */
 	VkFramebuffer shadow_framebuffer;
-	VkRenderPass scene_pass, shadow_pass, color_pass, accumulate_pass;
+	VkRenderPass scene_pass, shadow_pass;
+	struct { VkFormat format; bool load; VkRenderPass pass; } color_passes[16]; /* by target format */
+	int color_pass_count;
 	struct aa_gpu_pipeline scene_pipeline, scene_cutout_pipeline, shadow_pipeline, shadow_cutout_pipeline;
 	VkDescriptorPool pool;
 	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
@@ -107,23 +109,39 @@ void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t);
 void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
 			    float jitter_x_px, float jitter_y_px);
 
-/* A full-screen pass that reads one sampled image (binding 0) and writes one colour target. */
+/* A full-screen pass: a fragment shader reads up to four sampled images (bindings 0..3, in order) and
+ * writes one colour target of any format. Used by every post-process method. */
+#define AA_PASS_MAX_SOURCES 4
+struct aa_fullscreen_desc {
+	const char *frag;
+	int source_count;
+	struct aa_gpu_image *sources[AA_PASS_MAX_SOURCES];
+	bool linear[AA_PASS_MAX_SOURCES]; /* bilinear, clamp-to-edge sampling instead of nearest */
+	struct aa_gpu_image *target;
+	bool accumulate;                  /* blend ONE+ONE into the kept contents (reference accumulation) */
+	bool keep;                        /* keep the target's contents (no clear), e.g. with discard */
+	uint32_t push_size;               /* bytes of push constants the shader takes */
+	const VkSpecializationInfo *specialization;
+};
 struct aa_fullscreen_pass {
 	struct aa_gpu_pipeline pipeline;
 	VkDescriptorSet set;
 	VkFramebuffer framebuffer;
+	VkRenderPass render_pass;         /* borrowed from the renderer's cache */
 	struct aa_gpu_image *target;
-	bool accumulate;
+	bool load;
 };
-/* accumulate: blend ONE+ONE into a target that keeps its contents (RGBA32F); otherwise overwrite an
- * RGBA16F target. push_size: bytes of push constants the shader takes. */
-int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p, const char *frag,
-			      struct aa_gpu_image *source, struct aa_gpu_image *target, bool accumulate,
-			      uint32_t push_size, struct aa_error *err);
+int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p,
+			      const struct aa_fullscreen_desc *desc, struct aa_error *err);
+/* Records the pass; push may be NULL when push_size is 0. Leaves the target SHADER_READ_ONLY_OPTIMAL
+ * (COLOR_ATTACHMENT_OPTIMAL for accumulate/keep passes). */
 void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
 			       const void *push, uint32_t push_size);
 void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p);
 
+/* A single-subpass render pass writing one colour attachment of this format (cached). */
+int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,
+			   struct aa_error *err);
 /* Creates a GPU image and records it in info->memory under `name`. */
 int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, int width, int height,
 			     VkFormat format, VkImageUsageFlags usage, const char *name,

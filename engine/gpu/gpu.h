@@ -27,7 +27,7 @@ struct aa_gpu {
 	double timestamp_period_ns;
 	VkSampleCountFlags color_sample_counts; /* supported for RGBA16F + D32F attachments */
 	char driver_info[256];
-	VkSampler sampler_nearest, sampler_linear, sampler_shadow;
+	VkSampler sampler_nearest, sampler_linear, sampler_linear_clamp, sampler_shadow;
 };
 
 /* device_select: NULL/"" = first device (or $AALAB_DEVICE), a decimal index, or a substring of the

@@ -201,6 +201,12 @@ static int create_samplers(struct aa_gpu *gpu, struct aa_error *err)
 	s.maxLod = VK_LOD_CLAMP_NONE;
 	if (vkCreateSampler(gpu->device, &s, NULL, &gpu->sampler_linear) != VK_SUCCESS)
 		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateSampler failed");
+	/* Post-process passes that filter (SMAA's bilinear taps): linear, clamped, no mips. */
+	s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+	s.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+	s.maxLod = 0.0f;
+	if (vkCreateSampler(gpu->device, &s, NULL, &gpu->sampler_linear_clamp) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateSampler failed");
 	/* Shadow map: hardware 2x2 PCF; reversed-Z, so lit means fragment depth >= stored depth. */
 	s.addressModeU = s.addressModeV = s.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
 	s.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
@@ -256,6 +262,7 @@ void aa_gpu_destroy(struct aa_gpu *gpu)
 		vkDeviceWaitIdle(gpu->device);
 		vkDestroySampler(gpu->device, gpu->sampler_nearest, NULL);
 		vkDestroySampler(gpu->device, gpu->sampler_linear, NULL);
+		vkDestroySampler(gpu->device, gpu->sampler_linear_clamp, NULL);
 		vkDestroySampler(gpu->device, gpu->sampler_shadow, NULL);
 		vkDestroyCommandPool(gpu->device, gpu->command_pool, NULL);
 		vkDestroyDevice(gpu->device, NULL);

@@ -53,8 +53,9 @@ static int ssaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	    aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT,
 				     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
 				     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "resolved colour", info, err) ||
-	    aa_fullscreen_pass_create(r, &s->downsample, "resolve_box.frag", &s->big.color, &s->output, false,
-				      sizeof(int32_t), err)) {
+	    aa_fullscreen_pass_create(r, &s->downsample, &(struct aa_fullscreen_desc){
+			.frag = "resolve_box.frag", .source_count = 1, .sources = {&s->big.color},
+			.target = &s->output, .push_size = sizeof(int32_t)}, err)) {
 		ssaa_destroy(s);
 		return -1;
 	}

@@ -37,8 +37,9 @@ int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference 
 	    aa_gpu_image_create(r->gpu, &ref->accum, r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
 				VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
 				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err) ||
-	    aa_fullscreen_pass_create(r, &ref->accumulate, "accumulate.frag", &ref->target.color, &ref->accum, true,
-				      0, err))
+	    aa_fullscreen_pass_create(r, &ref->accumulate, &(struct aa_fullscreen_desc){
+			.frag = "accumulate.frag", .source_count = 1, .sources = {&ref->target.color},
+			.target = &ref->accum, .accumulate = true}, err))
 		return -1;
 	ref->memory_bytes = ref->target.color.bytes + ref->target.depth.bytes + ref->accum.bytes;
 	return 0;

@@ -293,6 +293,11 @@ void aa_camera_path_eval(const struct aa_camera_path *path, bool hold_first, dou
 {
 	if (cut)
 		*cut = false;
+	if (!path || path->key_count < 1) {
+		*out = (struct aa_camera){.position = v3(0, 0, 1), .up = v3(0, 1, 0), .fov_y_degrees = 50.0f,
+					  .ortho_height = 2.0f, .near_plane = 0.1f, .far_plane = 100.0f};
+		return;
+	}
 	if (!isfinite(t) || t < 0)
 		t = 0;
 	*out = path->keys[0].camera;

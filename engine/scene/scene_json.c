@@ -224,6 +224,10 @@ static int number_value(struct sj *s, const json_t *v, struct sj_range r, double
 		*out = json_number_value(v);
 		return 0;
 	}
+	double x = json_is_number(v) ? json_number_value(v) : 0.0;
+	if ((x > SJ_MAX_ABS && r.max >= SJ_MAX_ABS) || (x < -SJ_MAX_ABS && r.min <= -SJ_MAX_ABS))
+		return sj_fail(s, AA_ERR_INVALID, "expected a number no larger than %g in magnitude, got %s", SJ_MAX_ABS,
+			       sj_describe(v, got, sizeof got));
 	range_text(r, want, sizeof want);
 	return sj_fail(s, AA_ERR_INVALID, "expected %s, got %s", want, sj_describe(v, got, sizeof got));
 }

@@ -88,9 +88,10 @@ static void test_defaults(void **state)
 	assert_int_equal(s.first_frame, 0);
 	assert_int_equal(s.reference_samples, 64);
 	assert_true(s.keep_frames);
-	assert_int_equal(s.method_count, 1);
+	assert_int_equal(s.method_count, 2);
 	assert_string_equal(s.methods[0].method->name, "none");
 	assert_string_equal(s.methods[0].label, "none");
+	assert_string_equal(s.methods[1].label, "ssaa:16");
 	assert_string_equal(s.name, "");
 
 	/* An empty job object means all defaults. */

@@ -393,8 +393,8 @@ static void test_procedural_meshes(void **state)
 		"\"box\"", "{\"type\": \"box\", \"size\": [3, 0.01, 0.5]}", "\"sphere\"",
 		"{\"type\": \"sphere\", \"radius\": 2, \"stacks\": 3, \"slices\": 5}", "\"cylinder\"",
 		"{\"type\": \"cylinder\", \"caps\": false, \"segments\": 3}", "\"wires\"",
-		"{\"type\": \"wires\", \"points\": [[0, 5, 0], [0, 5, 10], [3, 6, 20]], \"count\": 4, \"radius\": 0.002, "
-		"\"sides\": 3}", "{\"type\": \"wires\", \"points\": [[0, 0, 0], [0, 10, 0]], \"sag\": 0}", "\"fence\"",
+		("{\"type\": \"wires\", \"points\": [[0, 5, 0], [0, 5, 10], [3, 6, 20]], \"count\": 4, \"radius\": 0.002, "
+		 "\"sides\": 3}"), "{\"type\": \"wires\", \"points\": [[0, 0, 0], [0, 10, 0]], \"sag\": 0}", "\"fence\"",
 		"{\"type\": \"fence\", \"style\": \"grid\", \"grid_spacing\": 0.2}", "\"blinds\"",
 		"{\"type\": \"blinds\", \"tilt\": -80, \"cords\": false}", "\"stairs\"", "\"wheel\"",
 		"{\"type\": \"wheel\", \"spokes\": 0}", "\"hairball\"", "{\"type\": \"hairball\", \"count\": 50, \"sides\": 5}",

@@ -1,0 +1,1 @@
+# daemon: Makefile fragment, included from Makefile.am (keeps parallel work in separate files).

@@ -1,0 +1,1 @@
+# engine/metrics: Makefile fragment, included from Makefile.am (keeps parallel work in separate files).
