@@ -208,11 +208,15 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	}
 	ctx->timer = &js->timer;
 	ctx->output = NULL;
-	if (method->render(js->states[i], ctx, err) || !ctx->output ||
+	if (method->render(js->states[i], ctx, err) || !ctx->output || ctx->output->width != ctx->width ||
+	    ctx->output->height != ctx->height ||
+	    (ctx->output->format != VK_FORMAT_R16G16B16A16_SFLOAT &&
+	     ctx->output->format != VK_FORMAT_R32G32B32A32_SFLOAT) ||
 	    aa_gpu_record_readback(gpu, ctx->cmd, ctx->output, &js->readback, err)) {
 		aa_gpu_submit_wait(gpu, ctx->cmd, NULL);
 		if (!err->message[0])
-			aa_error_set(err, AA_ERR_INTERNAL, "", "%s produced no output", method->name);
+			aa_error_set(err, AA_ERR_INTERNAL, "", "%s produced no frame-sized RGBA16F/RGBA32F output",
+				     method->name);
 		aa_error_prefix(err, "%s", js->spec->methods[i].label);
 		return -1;
 	}
@@ -230,10 +234,14 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 		fr->passes[s].gpu_ms = ms[s];
 		fr->gpu_ms += ms[s];
 	}
-	const uint16_t *half = js->readback.mapped;
 	size_t n = (size_t)ctx->width * ctx->height * 4;
-	for (size_t k = 0; k < n; k++)
-		js->output.pixels[k] = half_to_float(half[k]);
+	if (ctx->output->format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+		memcpy(js->output.pixels, js->readback.mapped, n * sizeof(float));
+	} else {
+		const uint16_t *half = js->readback.mapped;
+		for (size_t k = 0; k < n; k++)
+			js->output.pixels[k] = half_to_float(half[k]);
+	}
 	fr->nonfinite = count_nonfinite(&js->output);
 	aa_image_encode_srgb8(&js->output, &js->out8);
 	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err))

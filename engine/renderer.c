@@ -147,38 +147,17 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 {
 	struct aa_gpu *g = r->gpu;
-	struct aa_gpu_pass_desc scene = {
-		.color_count = 1, .color_formats = {AA_SCENE_COLOR_FORMAT}, .depth_format = AA_DEPTH_FORMAT,
-		.samples = 1,
-	};
-	if (aa_gpu_render_pass_create(g, &scene, &r->scene_pass, err))
-		return -1;
 	VkDescriptorType types[4] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-	if (aa_gpu_layout_create(g, types, NULL, 4, sizeof(struct aa_draw_push), &r->scene_pipeline, err))
+	if (aa_gpu_layout_create(g, types, NULL, 4, sizeof(struct aa_draw_push), &r->scene_layout, err))
 		return -1;
-	VkBool32 yes = VK_TRUE;
-	VkSpecializationMapEntry entry = {0, 0, sizeof yes};
-	VkSpecializationInfo alpha_test = {1, &entry, sizeof yes, &yes};
-	struct aa_gpu_graphics_desc d = {
-		.vert = "scene.vert", .frag = "scene.frag", .vertex_layout = AA_VERTEX_SCENE,
-		.render_pass = r->scene_pass, .color_count = 1, .samples = 1, .depth_test = true,
-		.depth_write = true, .cull = VK_CULL_MODE_NONE, .layout = r->scene_pipeline.layout,
-	};
-	if (aa_gpu_graphics_pipeline_create(g, &d, &r->scene_pipeline, err))
-		return -1;
-	if (r->plan.alpha_test) {
-		d.frag_specialization = &alpha_test;
-		if (aa_gpu_graphics_pipeline_create(g, &d, &r->scene_cutout_pipeline, err))
-			return -1;
-	}
 	if (r->plan.shadow_map) {
 		struct aa_gpu_graphics_desc sd = {
 			.vert = "shadow.vert", .vertex_layout = AA_VERTEX_SCENE, .render_pass = r->shadow_pass,
 			.samples = 1, .depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
-			.layout = r->scene_pipeline.layout,
-			/* reversed-Z: push stored depths toward the light (larger) is wrong; push them away */
+			.layout = r->scene_layout.layout,
+			/* reversed-Z: push stored depths away from the light (smaller) against acne */
 			.depth_bias_constant = -2.0f, .depth_bias_slope = -2.0f,
 		};
 		if (aa_gpu_graphics_pipeline_create(g, &sd, &r->shadow_pipeline, err))
@@ -192,6 +171,47 @@ static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 	return 0;
 }
 
+/* The render pass and pipelines of one kind of scene target, created on first use. */
+static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_desc *d, struct aa_error *err)
+{
+	for (int i = 0; i < r->variant_count; i++)
+		if (memcmp(&r->variants[i].desc, d, sizeof *d) == 0)
+			return i;
+	if (r->variant_count == (int)(sizeof r->variants / sizeof r->variants[0]))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "too many scene target kinds");
+	if (d->samples > 1 && !(r->gpu->color_sample_counts & d->samples))
+		return aa_error_set(err, AA_ERR_GPU, "", "the device cannot render %u samples per pixel", d->samples);
+	struct aa_scene_variant *v = &r->variants[r->variant_count];
+	memset(v, 0, sizeof *v);
+	v->desc = *d;
+	struct aa_gpu_pass_desc pass = {
+		.color_count = d->edge_distances ? 2 : 1,
+		.color_formats = {AA_SCENE_COLOR_FORMAT, VK_FORMAT_R16G16_SFLOAT},
+		.depth_format = AA_DEPTH_FORMAT, .depth_readable = d->depth_readable,
+		.samples = d->samples, .resolve = d->samples > 1,
+	};
+	if (aa_gpu_render_pass_create(r->gpu, &pass, &v->pass, err))
+		return -1;
+	VkBool32 constants[2] = {VK_FALSE, d->shade_at_pixel_centre};
+	VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
+	VkSpecializationInfo spec = {2, entries, sizeof constants, constants};
+	struct aa_gpu_graphics_desc g = {
+		.vert = "scene.vert", .frag = d->edge_distances ? "gbaa.frag" : "scene.frag",
+		.geom = d->edge_distances ? "gbaa.geom" : NULL, .vertex_layout = AA_VERTEX_SCENE,
+		.render_pass = v->pass, .color_count = pass.color_count, .samples = d->samples ? d->samples : 1,
+		.depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
+		.layout = r->scene_layout.layout, .frag_specialization = &spec,
+	};
+	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->opaque, err))
+		return -1;
+	if (r->plan.alpha_test) {
+		constants[0] = VK_TRUE;
+		if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->cutout, err))
+			return -1;
+	}
+	return r->variant_count++;
+}
+
 static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 {
 	int n = r->scene->texture_count + 1;
@@ -201,7 +221,7 @@ static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 	if (!r->texture_sets)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	for (int i = 0; i < n; i++) {
-		if (aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &r->scene_pipeline, &r->texture_sets[i], err))
+		if (aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &r->scene_layout, &r->texture_sets[i], err))
 			return -1;
 		VkDescriptorSet set = r->texture_sets[i];
 		aa_gpu_write_buffer(r->gpu, set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &r->frame_ubo);
@@ -247,15 +267,17 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	vkDeviceWaitIdle(g->device);
 	aa_gpu_pipeline_destroy(g, &r->shadow_cutout_pipeline);
 	aa_gpu_pipeline_destroy(g, &r->shadow_pipeline);
-	/* these borrow the scene pipeline's layout, so they own only their VkPipeline */
-	aa_gpu_pipeline_destroy(g, &r->scene_cutout_pipeline);
-	aa_gpu_pipeline_destroy(g, &r->scene_pipeline);
+	/* variant pipelines borrow the scene layout, so they own only their VkPipeline */
+	for (int i = 0; i < r->variant_count; i++) {
+		aa_gpu_pipeline_destroy(g, &r->variants[i].opaque);
+		aa_gpu_pipeline_destroy(g, &r->variants[i].cutout);
+		vkDestroyRenderPass(g->device, r->variants[i].pass, NULL);
+	}
+	aa_gpu_pipeline_destroy(g, &r->scene_layout);
 	if (r->pool)
 		vkDestroyDescriptorPool(g->device, r->pool, NULL);
-	VkRenderPass passes[] = {r->scene_pass, r->shadow_pass};
-	for (size_t i = 0; i < sizeof passes / sizeof passes[0]; i++)
-		if (passes[i])
-			vkDestroyRenderPass(g->device, passes[i], NULL);
+	if (r->shadow_pass)
+		vkDestroyRenderPass(g->device, r->shadow_pass, NULL);
 	for (int i = 0; i < r->color_pass_count; i++)
 		vkDestroyRenderPass(g->device, r->color_passes[i].pass, NULL);
 	if (r->shadow_framebuffer)
@@ -323,6 +345,8 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	u->camera_position[1] = camera->position.y;
 	u->camera_position[2] = camera->position.z;
 	memcpy(u->ambient, s->ambient, 3 * sizeof(float));
+	u->frame_size[0] = (float)r->width;
+	u->frame_size[1] = (float)r->height;
 	int shadow_light = -1;
 	for (int i = 0; i < s->light_count && i < AA_MAX_LIGHTS; i++) {
 		const struct aa_light *l = &s->lights[i];
@@ -372,7 +396,7 @@ static void push_object(struct aa_renderer *r, VkCommandBuffer cmd, int o, float
 	push.object_id = r->scene->objects[o].model_id;
 	push.jitter_ndc[0] = jx;
 	push.jitter_ndc[1] = jy;
-	vkCmdPushConstants(cmd, r->scene_pipeline.layout, VK_SHADER_STAGE_ALL, 0, sizeof push, &push);
+	vkCmdPushConstants(cmd, r->scene_layout.layout, VK_SHADER_STAGE_ALL, 0, sizeof push, &push);
 }
 
 static VkDescriptorSet object_set(struct aa_renderer *r, int o)
@@ -402,7 +426,7 @@ static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struc
 			if (is_cutout != (pass == 1))
 				continue;
 			VkDescriptorSet set = object_set(r, o);
-			vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_pipeline.layout, 0, 1,
+			vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_layout.layout, 0, 1,
 						&set, 0, NULL);
 			push_object(r, cmd, o, jx, jy);
 			const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
@@ -427,21 +451,64 @@ void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 int aa_scene_target_create(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
 			   const char *name, struct aa_method_result *info, struct aa_error *err)
 {
+	return aa_scene_target_create_desc(r, t, width, height, NULL, name, info, err);
+}
+
+static int target_image(struct aa_renderer *r, struct aa_gpu_image *img, int width, int height, VkFormat format,
+			VkImageUsageFlags usage, uint32_t samples, const char *name, const char *what,
+			struct aa_method_result *info, struct aa_error *err)
+{
+	char label[48];
+	snprintf(label, sizeof label, "%s %s", name, what);
+	if (aa_gpu_image_create(r->gpu, img, width, height, format, usage, samples, 1, err))
+		return -1;
+	aa_method_result_add_memory(info, label, img->bytes);
+	return 0;
+}
+
+int aa_scene_target_create_desc(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
+				const struct aa_scene_target_desc *desc, const char *name,
+				struct aa_method_result *info, struct aa_error *err)
+{
 	memset(t, 0, sizeof *t);
+	struct aa_scene_target_desc d = desc ? *desc : (struct aa_scene_target_desc){0};
+	if (d.samples == 0)
+		d.samples = 1;
 	t->width = width;
 	t->height = height;
-	char label[48];
-	snprintf(label, sizeof label, "%s colour", name);
-	if (aa_renderer_image_create(r, &t->color, width, height, AA_SCENE_COLOR_FORMAT,
-				     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-				     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, label, info, err))
+	t->variant = scene_variant(r, &d, err);
+	if (t->variant < 0)
 		return -1;
-	snprintf(label, sizeof label, "%s depth", name);
-	if (aa_renderer_image_create(r, &t->depth, width, height, AA_DEPTH_FORMAT,
-				     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, label, info, err))
+	VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+					VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+	VkImageUsageFlags depth_usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+					(d.depth_readable ? VK_IMAGE_USAGE_SAMPLED_BIT : 0);
+	struct aa_gpu_image *att[4];
+	int n = 0;
+	if (target_image(r, &t->color, width, height, AA_SCENE_COLOR_FORMAT,
+			 d.samples > 1 ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT : color_usage, d.samples, name,
+			 d.samples > 1 ? "colour samples" : "colour", info, err))
 		return -1;
-	struct aa_gpu_image *att[2] = {&t->color, &t->depth};
-	return aa_gpu_framebuffer_create(r->gpu, r->scene_pass, att, 2, &t->framebuffer, err);
+	att[n++] = &t->color;
+	if (d.edge_distances) {
+		if (target_image(r, &t->edges, width, height, VK_FORMAT_R16G16_SFLOAT, color_usage, 1, name,
+				 "edge distances", info, err))
+			return -1;
+		att[n++] = &t->edges;
+	}
+	if (target_image(r, &t->depth, width, height, AA_DEPTH_FORMAT, depth_usage, d.samples, name,
+			 d.samples > 1 ? "depth samples" : "depth", info, err))
+		return -1;
+	att[n++] = &t->depth;
+	t->output = &t->color;
+	if (d.samples > 1) {
+		if (target_image(r, &t->resolved, width, height, AA_SCENE_COLOR_FORMAT, color_usage, 1, name,
+				 "resolved colour", info, err))
+			return -1;
+		att[n++] = &t->resolved;
+		t->output = &t->resolved;
+	}
+	return aa_gpu_framebuffer_create(r->gpu, r->variants[t->variant].pass, att, n, &t->framebuffer, err);
 }
 
 void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t)
@@ -450,24 +517,34 @@ void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t)
 		vkDestroyFramebuffer(r->gpu->device, t->framebuffer, NULL);
 	aa_gpu_image_destroy(r->gpu, &t->color);
 	aa_gpu_image_destroy(r->gpu, &t->depth);
+	aa_gpu_image_destroy(r->gpu, &t->resolved);
+	aa_gpu_image_destroy(r->gpu, &t->edges);
 	memset(t, 0, sizeof *t);
 }
 
 void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
 			    float jitter_x_px, float jitter_y_px)
 {
+	const struct aa_scene_variant *v = &r->variants[t->variant];
 	const float *bg = r->scene->background;
-	VkClearValue clears[2] = {
-		{.color = {.float32 = {bg[0], bg[1], bg[2], 1.0f}}},
-		{.depthStencil = {0.0f, 0}}, /* reversed-Z: far is 0 */
-	};
-	aa_gpu_begin_pass(cmd, r->scene_pass, t->framebuffer, t->width, t->height, clears, 2);
+	/* attachment order: colour, [edges], depth, [resolve] */
+	VkClearValue clears[4];
+	int n = 0;
+	clears[n++] = (VkClearValue){.color = {.float32 = {bg[0], bg[1], bg[2], 1.0f}}};
+	if (v->desc.edge_distances) /* (0.5, 0.5): no edge in this pixel (GBAA's "nothing to blend") */
+		clears[n++] = (VkClearValue){.color = {.float32 = {0.5f, 0.5f, 0.0f, 0.0f}}};
+	clears[n++] = (VkClearValue){.depthStencil = {0.0f, 0}}; /* reversed-Z: far is 0 */
+	clears[n++] = (VkClearValue){.color = {.float32 = {0, 0, 0, 0}}};
+	aa_gpu_begin_pass(cmd, v->pass, t->framebuffer, t->width, t->height, clears, n);
 	/* NDC spans 2 units over the target: a jitter of j pixels is 2j/size in NDC. */
-	draw_objects(r, cmd, &r->scene_pipeline, &r->scene_cutout_pipeline, 2.0f * jitter_x_px / t->width,
+	draw_objects(r, cmd, &v->opaque, &v->cutout, 2.0f * jitter_x_px / t->width,
 		     2.0f * jitter_y_px / t->height);
 	vkCmdEndRenderPass(cmd);
 	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-	t->depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+	t->resolved.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	t->edges.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	t->depth.layout = v->desc.depth_readable ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+						 : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 }
 
 int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,

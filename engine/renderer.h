@@ -21,6 +21,7 @@ struct aa_frame_uniforms {
 	float shadow_view_proj[16];
 	float camera_position[4];
 	float ambient[4];
+	float frame_size[4];
 	int32_t counts[4];
 	struct {
 		float position_type[4];
@@ -46,11 +47,31 @@ struct aa_draw_push {
 	float jitter_ndc[2];
 };
 
+/* What a scene target holds beyond one colour sample and depth per pixel. Each distinct description is a
+ * render pass + pipeline variant, created on first use and cached by the renderer. */
+struct aa_scene_target_desc {
+	uint32_t samples;           /* 1, or a hardware MSAA count the device supports (resolved by box) */
+	bool depth_readable;        /* depth is stored and left sampleable (depth edge detection) */
+	bool edge_distances;        /* GBAA: a geometry shader writes distances to triangle edges (RG16F) */
+	bool shade_at_pixel_centre; /* virtual MSAA samples: jittered geometry, shading at the pixel centre;
+				     * the target must be frame-sized */
+};
+
+struct aa_scene_variant {
+	struct aa_scene_target_desc desc;
+	VkRenderPass pass;
+	struct aa_gpu_pipeline opaque, cutout; /* borrow the renderer's scene layout */
+};
+
 /* A colour + depth target the scene pass draws into. */
 struct aa_scene_target {
 	struct aa_gpu_image color, depth;
+	struct aa_gpu_image resolved;  /* samples > 1: the box-resolved single-sample colour */
+	struct aa_gpu_image edges;     /* edge_distances: RG16F signed distances in pixels */
+	struct aa_gpu_image *output;   /* resolved colour when multisampled, else &color */
 	VkFramebuffer framebuffer;
 	int width, height;
+	int variant;
 };
 
 /* What a method needs to render one frame. */
@@ -78,10 +99,13 @@ struct aa_renderer {
 	struct aa_gpu_image *textures;   /* scene->texture_count, plus white at [texture_count] */
 	struct aa_gpu_image shadow_map;  /* AA_SHADOW_MAP_SIZE^2 when the plan has shadows, else 1x1 */
 	VkFramebuffer shadow_framebuffer;
-	VkRenderPass scene_pass, shadow_pass;
+	VkRenderPass shadow_pass;
+	struct aa_gpu_pipeline scene_layout;    /* layout of every scene and shadow pipeline */
+	struct aa_scene_variant variants[8];
+	int variant_count;
 	struct { VkFormat format; bool load; VkRenderPass pass; } color_passes[16]; /* by target format */
 	int color_pass_count;
-	struct aa_gpu_pipeline scene_pipeline, scene_cutout_pipeline, shadow_pipeline, shadow_cutout_pipeline;
+	struct aa_gpu_pipeline shadow_pipeline, shadow_cutout_pipeline;
 	VkDescriptorPool pool;
 	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
 	struct aa_frame_uniforms uniforms;
@@ -100,12 +124,16 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 /* Records the shadow-map pass (only when the plan has one). */
 void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd);
 
-/* Scene targets of any size (single sample); memory is added to info when not NULL. */
+/* Scene targets of any size; memory is added to info when not NULL. The plain form is one sample per
+ * pixel; the _desc form takes the options above (desc NULL = plain). */
 int aa_scene_target_create(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
 			   const char *name, struct aa_method_result *info, struct aa_error *err);
+int aa_scene_target_create_desc(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,
+				const struct aa_scene_target_desc *desc, const char *name,
+				struct aa_method_result *info, struct aa_error *err);
 void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t);
-/* Draws the whole scene into t, with a sub-pixel jitter given in pixels of t. Leaves t->color in
- * SHADER_READ_ONLY_OPTIMAL. */
+/* Draws the whole scene into t, with a sub-pixel jitter given in pixels of t (geometry moves by the
+ * jitter). Leaves t->output (and edges, readable depth) in SHADER_READ_ONLY_OPTIMAL. */
 void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
 			    float jitter_x_px, float jitter_y_px);
 

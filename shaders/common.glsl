@@ -20,6 +20,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 	mat4 shadow_view_proj;
 	vec4 camera_position;
 	vec4 ambient;
+	vec4 frame_size;      // xy: the frame's width and height in pixels
 	ivec4 counts;         // x: light count, y: shadow map enabled
 	Light lights[MAX_LIGHTS];
 } frame;

@@ -3,8 +3,12 @@
 // Forward shading: base colour times pattern or texture, Lambert plus optional Blinn-Phong specular,
 // directional and point lights, one shadow-mapped directional light. Output is linear colour.
 #include "common.glsl"
+#include "shading.glsl"
 
 layout(constant_id = 0) const bool ALPHA_TEST = false;
+// Virtual MSAA samples: the geometry is jittered to a sample position, but shading is evaluated at the
+// pixel centre (attributes extrapolated by the jitter), once per pixel and triangle as MSAA does.
+layout(constant_id = 1) const bool SHADE_AT_PIXEL_CENTRE = false;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -12,84 +16,19 @@ layout(location = 2) in vec2 in_uv;
 
 layout(location = 0) out vec4 out_color;
 
-vec4 surface_color(Material m)
-{
-	uint pattern = uint(m.color2.w);
-	vec4 c = m.base_color;
-	if (pattern == PATTERN_CHECKER) {
-		vec2 cell = floor(in_uv * m.pattern.xy);
-		if (mod(cell.x + cell.y, 2.0) >= 1.0)
-			c.rgb = m.color2.rgb;
-	} else if (pattern == PATTERN_STRIPES) {
-		if (fract(in_uv.x * m.pattern.x) < m.pattern.z)
-			c.rgb = m.color2.rgb;
-	} else if (pattern == PATTERN_TEXTURE) {
-		c *= texture(material_texture, in_uv); // sRGB image view: decoded to linear by the sampler
-	}
-	return c;
-}
-
-float shadow_visibility(vec3 world, float ndotl)
-{
-	vec4 p = frame.shadow_view_proj * vec4(world, 1.0);
-	vec3 ndc = p.xyz / p.w;
-	vec2 uv = ndc.xy * 0.5 + 0.5;
-	if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
-		return 1.0;
-	// reversed-Z: the stored depth is the closest occluder (largest); a slope-scaled bias keeps
-	// surfaces from shadowing themselves.
-	float bias = 0.0005 + 0.002 * (1.0 - ndotl);
-	return texture(shadow_map, vec3(uv, ndc.z + bias));
-}
-
 void main()
 {
+	vec3 world = in_world, normal = in_normal;
+	vec2 uv = in_uv;
+	if (SHADE_AT_PIXEL_CENTRE) {
+		vec2 offset = draw.jitter_ndc * frame.frame_size.xy * 0.5;
+		world = interpolateAtOffset(in_world, offset);
+		normal = interpolateAtOffset(in_normal, offset);
+		uv = interpolateAtOffset(in_uv, offset);
+	}
 	Material m = materials[draw.material];
-	vec4 base = surface_color(m);
-	uint flags = uint(m.shading.w);
+	vec4 base = surface_color(m, uv);
 	if (ALPHA_TEST && base.a < m.shading.z)
 		discard;
-	if ((flags & MATERIAL_UNLIT) != 0u) {
-		out_color = vec4(base.rgb, 1.0);
-		return;
-	}
-	vec3 n = normalize(in_normal);
-	if (!gl_FrontFacing)
-		n = -n; // two-sided: thin blinds and wires are seen from both sides
-	vec3 v = normalize(frame.camera_position.xyz - in_world);
-	vec3 color = frame.ambient.rgb * base.rgb;
-	float specular = m.shading.x;
-	float shininess = mix(512.0, 4.0, clamp(m.shading.y, 0.0, 1.0));
-	for (int i = 0; i < frame.counts.x; i++) {
-		Light light = frame.lights[i];
-		vec3 l;
-		vec3 radiance = light.color_range.rgb;
-		if (light.position_type.w < 0.5) {
-			l = -normalize(light.position_type.xyz);
-		} else {
-			vec3 d = light.position_type.xyz - in_world;
-			float dist2 = max(dot(d, d), 1e-4);
-			l = d * inversesqrt(dist2);
-			radiance /= dist2;
-			float range = light.color_range.w;
-			if (range > 0.0) {
-				float f = clamp(1.0 - dist2 / (range * range), 0.0, 1.0);
-				radiance *= f * f;
-			}
-		}
-		float ndotl = max(dot(n, l), 0.0);
-		if (ndotl <= 0.0)
-			continue;
-		float vis = 1.0;
-		if (light.shadow.x > 0.5 && frame.counts.y != 0)
-			vis = shadow_visibility(in_world, ndotl);
-		vec3 lit = base.rgb * ndotl;
-		if (specular > 0.0) {
-			vec3 h = normalize(l + v);
-			// normalised Blinn-Phong so rough and smooth surfaces reflect similar energy
-			lit += specular * (shininess + 8.0) / 25.13274 * pow(max(dot(n, h), 0.0), shininess) * ndotl;
-		}
-		color += vis * radiance * lit;
-	}
-	out_color = vec4(color, 1.0);
+	out_color = vec4(shade(m, base, world, normal, gl_FrontFacing), 1.0);
 }

@@ -10,7 +10,7 @@ void main()
 	Material m = materials[draw.material];
 	float a = m.base_color.a;
 	if (uint(m.color2.w) == PATTERN_TEXTURE)
-		a *= texture(material_texture, in_uv).a;
+		a *= texture(material_texture, in_uv * m.pattern.xy).a;
 	if (a < m.shading.z)
 		discard;
 }

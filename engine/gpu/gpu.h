@@ -119,6 +119,7 @@ enum aa_vertex_layout { AA_VERTEX_NONE /* full-screen triangle from gl_VertexInd
 
 struct aa_gpu_graphics_desc {
 	const char *vert, *frag;     /* shader names; frag may be NULL (depth only) */
+	const char *geom;            /* optional geometry shader */
 	enum aa_vertex_layout vertex_layout;
 	VkRenderPass render_pass;
 	int color_count;

@@ -56,19 +56,27 @@ int aa_gpu_layout_create(struct aa_gpu *gpu, const VkDescriptorType *types, cons
 int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_graphics_desc *d,
 				    struct aa_gpu_pipeline *p, struct aa_error *err)
 {
-	VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
-	if (make_module(gpu, d->vert, &vs, err))
-		return -1;
-	if (d->frag && make_module(gpu, d->frag, &fs, err)) {
+	VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, gs = VK_NULL_HANDLE;
+	if (make_module(gpu, d->vert, &vs, err) || (d->frag && make_module(gpu, d->frag, &fs, err)) ||
+	    (d->geom && make_module(gpu, d->geom, &gs, err))) {
 		vkDestroyShaderModule(gpu->device, vs, NULL);
+		vkDestroyShaderModule(gpu->device, fs, NULL);
 		return -1;
 	}
-	VkPipelineShaderStageCreateInfo stages[2] = {
+	VkPipelineShaderStageCreateInfo stages[3] = {
 		{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
 		 .module = vs, .pName = "main"},
-		{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-		 .module = fs, .pName = "main", .pSpecializationInfo = d->frag_specialization},
 	};
+	uint32_t stage_count = 1;
+	if (gs)
+		stages[stage_count++] = (VkPipelineShaderStageCreateInfo){
+			.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+			.stage = VK_SHADER_STAGE_GEOMETRY_BIT, .module = gs, .pName = "main"};
+	if (fs)
+		stages[stage_count++] = (VkPipelineShaderStageCreateInfo){
+			.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+			.stage = VK_SHADER_STAGE_FRAGMENT_BIT, .module = fs, .pName = "main",
+			.pSpecializationInfo = d->frag_specialization};
 	VkVertexInputBindingDescription vb = {0, sizeof(struct aa_vertex), VK_VERTEX_INPUT_RATE_VERTEX};
 	VkVertexInputAttributeDescription va[3] = {
 		{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(struct aa_vertex, position)},
@@ -138,7 +146,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 	};
 	VkGraphicsPipelineCreateInfo ci = {
 		.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-		.stageCount = d->frag ? 2 : 1,
+		.stageCount = stage_count,
 		.pStages = stages,
 		.pVertexInputState = &vi,
 		.pInputAssemblyState = &ia,
@@ -153,8 +161,8 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 	};
 	VkResult vr = vkCreateGraphicsPipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, &p->pipeline);
 	vkDestroyShaderModule(gpu->device, vs, NULL);
-	if (fs)
-		vkDestroyShaderModule(gpu->device, fs, NULL);
+	vkDestroyShaderModule(gpu->device, fs, NULL);
+	vkDestroyShaderModule(gpu->device, gs, NULL);
 	if (vr != VK_SUCCESS)
 		return aa_error_set(err, AA_ERR_GPU, "", "cannot create the %s/%s pipeline (VkResult %d)", d->vert,
 				    d->frag ? d->frag : "-", vr);

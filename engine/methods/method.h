@@ -57,7 +57,7 @@ struct aa_method {
 	int (*create)(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
 		      struct aa_method_state **out, struct aa_error *err);
 	/* Records frame ctx into ctx->cmd, timing each of its passes with ctx->timer, and sets ctx->output
-	 * to its result: a linear RGBA16F image of the frame size. */
+	 * to its result: a linear RGBA16F (or RGBA32F) image of the frame size. */
 	int (*render)(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err);
 	void (*reset)(struct aa_method_state *s); /* camera cut: forget history */
 	void (*destroy)(struct aa_method_state *s);

@@ -31,7 +31,7 @@ static int none_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, stru
 	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "scene");
 	aa_renderer_draw_scene(s->r, ctx->cmd, &s->target, 0.0f, 0.0f);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	ctx->output = &s->target.color;
+	ctx->output = s->target.output;
 	return 0;
 }
 

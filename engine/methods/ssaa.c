@@ -54,7 +54,7 @@ static int ssaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 				     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
 				     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "resolved colour", info, err) ||
 	    aa_fullscreen_pass_create(r, &s->downsample, &(struct aa_fullscreen_desc){
-			.frag = "resolve_box.frag", .source_count = 1, .sources = {&s->big.color},
+			.frag = "resolve_box.frag", .source_count = 1, .sources = {s->big.output},
 			.target = &s->output, .push_size = sizeof(int32_t)}, err)) {
 		ssaa_destroy(s);
 		return -1;

@@ -38,8 +38,8 @@ int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference 
 				VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
 				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err) ||
 	    aa_fullscreen_pass_create(r, &ref->accumulate, &(struct aa_fullscreen_desc){
-			.frag = "accumulate.frag", .source_count = 1, .sources = {&ref->target.color},
-			.target = &ref->accum, .accumulate = true}, err))
+			.frag = "accumulate.frag", .source_count = 1, .sources = {ref->target.output},
+			.target = &ref->accum, .accumulate = true, .push_size = sizeof(float)}, err))
 		return -1;
 	ref->memory_bytes = ref->target.color.bytes + ref->target.depth.bytes + ref->accum.bytes;
 	return 0;
@@ -76,7 +76,8 @@ static int render_range(struct aa_reference *ref, struct aa_gpu_timer *timer, in
 	}
 	for (int i = first; i < last; i++) {
 		aa_renderer_draw_scene(r, cmd, &ref->target, ref->offsets[i][0], ref->offsets[i][1]);
-		aa_fullscreen_pass_record(r, cmd, &ref->accumulate, NULL, 0);
+		float weight = 1.0f; /* summed; divided at readback so N/2 and N share the sum */
+		aa_fullscreen_pass_record(r, cmd, &ref->accumulate, &weight, sizeof weight);
 	}
 	aa_gpu_timer_end(cmd, timer, span);
 	if (aa_gpu_record_readback(r->gpu, cmd, &ref->accum, &ref->readback, err)) {

@@ -1,6 +1,7 @@
 /* Cameras and camera paths: reading them from a scene file and evaluating them at a time t
  * (Catmull-Rom keyframes with cuts, static, orbit, dolly, pan). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 

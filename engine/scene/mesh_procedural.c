@@ -3,6 +3,7 @@
 #include "mesh_procedural.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -1,6 +1,7 @@
 /* 2D test patterns as scenes: flat unlit polygons seen by an orthographic camera whose image is exactly
  * the pixel grid, so an exact-coverage reference can be compared pixel for pixel. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 

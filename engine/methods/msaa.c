@@ -1,0 +1,124 @@
+/* `msaa`: multisampling. Visibility is sampled at N standard positions per pixel, shading once per pixel
+ * and triangle, resolved with a box filter. Hardware MSAA where the device renders N samples (lavapipe:
+ * 4 only); otherwise "virtual samples": the scene is rasterised once per standard position (geometry
+ * jittered to it) with shading evaluated at the pixel centre, and the N images are averaged (seed 000). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../gpu/sample_positions.h"
+#include "../renderer.h"
+#include "method.h"
+
+static const int msaa_sample_counts[] = {2, 4, 8, 0};
+static const char *const msaa_paths[] = {"auto", "hardware", "virtual", NULL};
+enum { PATH_AUTO, PATH_HARDWARE, PATH_VIRTUAL };
+
+static const struct aa_param_def msaa_params[] = {
+	{.name = "samples", .type = AA_PARAM_INT, .def = 4, .min = 2, .max = 8, .allowed = msaa_sample_counts,
+	 .help = "samples per pixel, at the Vulkan standard sample locations"},
+	{.name = "path", .type = AA_PARAM_ENUM, .def = PATH_AUTO, .min = 0, .max = 2, .choices = msaa_paths,
+	 .help = "auto: hardware when the device supports the count, else virtual samples"},
+};
+
+struct aa_method_state {
+	struct aa_renderer *r;
+	int samples;
+	bool hardware;
+	struct aa_scene_target target;
+	struct aa_gpu_image accum;       /* virtual path: RGBA32F average of the sample images */
+	struct aa_fullscreen_pass accumulate;
+};
+
+static void msaa_destroy(struct aa_method_state *s)
+{
+	aa_fullscreen_pass_destroy(s->r, &s->accumulate);
+	aa_gpu_image_destroy(s->r->gpu, &s->accum);
+	aa_scene_target_destroy(s->r, &s->target);
+	free(s);
+}
+
+static int msaa_create(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
+		       struct aa_method_state **out, struct aa_error *err)
+{
+	struct aa_method_state *s = calloc(1, sizeof *s);
+	if (!s)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	s->r = r;
+	s->samples = (int)p->v[0];
+	int path = (int)p->v[1];
+	bool supported = (r->gpu->color_sample_counts & (VkSampleCountFlags)s->samples) != 0;
+	if (path == PATH_HARDWARE && !supported) {
+		free(s);
+		return aa_error_set(err, AA_ERR_INVALID, "params.path", "this device (%s) cannot render %d samples "
+				    "per pixel in hardware; use path=virtual or auto",
+				    r->gpu->properties.deviceName, (int)p->v[0]);
+	}
+	s->hardware = path == PATH_HARDWARE || (path == PATH_AUTO && supported);
+	int rc;
+	if (s->hardware) {
+		snprintf(info->path_taken, sizeof info->path_taken, "hardware %dx, box resolve", s->samples);
+		struct aa_scene_target_desc d = {.samples = (uint32_t)s->samples};
+		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "msaa", info, err);
+	} else {
+		snprintf(info->path_taken, sizeof info->path_taken,
+			 "virtual samples: %d rasterisations, shading at the pixel centre", s->samples);
+		struct aa_scene_target_desc d = {.samples = 1, .shade_at_pixel_centre = true};
+		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "sample", info, err) ||
+		     aa_renderer_image_create(r, &s->accum, r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
+					      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+					      VK_IMAGE_USAGE_TRANSFER_DST_BIT, "sample average (RGBA32F)", info,
+					      err) ||
+		     aa_fullscreen_pass_create(r, &s->accumulate, &(struct aa_fullscreen_desc){
+				.frag = "accumulate.frag", .source_count = 1, .sources = {s->target.output},
+				.target = &s->accum, .accumulate = true, .push_size = sizeof(float)}, err);
+	}
+	if (rc) {
+		msaa_destroy(s);
+		return -1;
+	}
+	*out = s;
+	return 0;
+}
+
+static int msaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err)
+{
+	if (s->hardware) {
+		int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "scene-msaa");
+		aa_renderer_draw_scene(s->r, ctx->cmd, &s->target, 0.0f, 0.0f);
+		aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+		ctx->output = s->target.output;
+		return 0;
+	}
+	const float (*pos)[2] = aa_standard_sample_positions(s->samples);
+	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "scene-virtual-samples");
+	aa_gpu_image_barrier(ctx->cmd, &s->accum, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+	VkClearColorValue zero = {.float32 = {0, 0, 0, 0}};
+	VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+	vkCmdClearColorImage(ctx->cmd, s->accum.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+	float weight = 1.0f / (float)s->samples;
+	for (int i = 0; i < s->samples; i++) {
+		/* moving the geometry by -(position - centre) puts sample i's point on the pixel centre */
+		aa_renderer_draw_scene(s->r, ctx->cmd, &s->target, 0.5f - pos[i][0], 0.5f - pos[i][1]);
+		aa_fullscreen_pass_record(s->r, ctx->cmd, &s->accumulate, &weight, sizeof weight);
+	}
+	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	ctx->output = &s->accum;
+	return 0;
+}
+
+static void msaa_reset(struct aa_method_state *s) { (void)s; }
+
+const struct aa_method aa_method_msaa = {
+	.name = "msaa",
+	.summary = "multisampling: N visibility samples per pixel, one shade per pixel and triangle",
+	.seed = "seed 000 (2x/4x/8x MSAA)",
+	.params = msaa_params,
+	.param_count = 2,
+	.main_param = "samples",
+	.needs = AA_NEED_MSAA,
+	.create = msaa_create,
+	.render = msaa_render,
+	.reset = msaa_reset,
+	.destroy = msaa_destroy,
+};
