@@ -70,7 +70,7 @@ struct job_state {
 	struct aa_gpu_timer timer;
 	struct aa_gpu_buffer readback;
 	struct aa_image_rgbaf full, half, output;
-	struct aa_image_rgba8 ref8, half8, out8, diff8;
+	struct aa_image_rgba8 ref8, half8, out8, diff8, flip8;
 	struct aa_job_result *result;
 };
 
@@ -94,6 +94,7 @@ static void job_state_free(struct job_state *js)
 	aa_image_rgba8_free(&js->half8);
 	aa_image_rgba8_free(&js->out8);
 	aa_image_rgba8_free(&js->diff8);
+	aa_image_rgba8_free(&js->flip8);
 }
 
 static int emit(aa_event_fn fn, void *user, struct aa_event *ev, struct aa_error *err)
@@ -165,7 +166,7 @@ static int setup(struct job_state *js, struct aa_error *err)
 	if (aa_image_rgbaf_alloc(&js->full, w, h) || aa_image_rgbaf_alloc(&js->half, w, h) ||
 	    aa_image_rgbaf_alloc(&js->output, w, h) || aa_image_rgba8_alloc(&js->ref8, w, h) ||
 	    aa_image_rgba8_alloc(&js->half8, w, h) || aa_image_rgba8_alloc(&js->out8, w, h) ||
-	    aa_image_rgba8_alloc(&js->diff8, w, h))
+	    aa_image_rgba8_alloc(&js->diff8, w, h) || aa_image_rgba8_alloc(&js->flip8, w, h))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
 	return 0;
 }
@@ -244,7 +245,8 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	}
 	fr->nonfinite = count_nonfinite(&js->output);
 	aa_image_encode_srgb8(&js->output, &js->out8);
-	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err))
+	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err) ||
+	    aa_metrics_perceptual(&js->ref8, &js->out8, &fr->metrics, &js->flip8, err))
 		return -1;
 	diff_image(&js->ref8, &js->out8, &js->diff8);
 	js->result->methods[i].frame_count = ctx->ordinal + 1;
@@ -281,10 +283,15 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
 		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
 		double t = ctx.frame / fps, t_prev = ordinal == 0 ? -1.0 : (ctx.frame - 1) / fps;
-		struct aa_camera cam;
+		struct aa_camera cam, prev_cam;
 		aa_camera_path_eval(path, hold_first, t_prev, t, &cam, &ctx.cut);
+		/* the previous frame on the path, for velocity; none after a cut */
+		double t_before = (ctx.frame - 1) / fps;
+		bool cut_before = false;
+		aa_camera_path_eval(path, hold_first, t_before - 1.0 / fps, t_before, &prev_cam, &cut_before);
 		ctx.cut |= ordinal == 0;
-		aa_renderer_set_frame(js.renderer, &cam, t, &ctx);
+		bool has_prev = ctx.frame > 0 && !(ctx.cut && ordinal > 0);
+		aa_renderer_set_frame(js.renderer, &cam, t, has_prev ? &prev_cam : NULL, t_before, &ctx);
 
 		rc = render_reference(&js, ordinal, err);
 		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
@@ -298,7 +305,8 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 			rc = render_method(&js, i, &ctx, err);
 			ev = (struct aa_event){.type = AA_EVENT_METHOD_FRAME, .result = js.result, .frame = ctx.frame,
 					       .frame_ordinal = ordinal, .method_index = i, .image = &js.out8,
-					       .linear = &js.output, .diff = &js.diff8};
+					       .linear = &js.output, .diff = &js.diff8,
+					       .flip_map = &js.flip8};
 			if (rc == 0)
 				rc = emit(on_event, user, &ev, err);
 			ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done,

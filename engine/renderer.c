@@ -147,10 +147,10 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 {
 	struct aa_gpu *g = r->gpu;
-	VkDescriptorType types[4] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+	VkDescriptorType types[5] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-	if (aa_gpu_layout_create(g, types, NULL, 4, sizeof(struct aa_draw_push), &r->scene_layout, err))
+				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+	if (aa_gpu_layout_create(g, types, NULL, 5, sizeof(struct aa_draw_push), &r->scene_layout, err))
 		return -1;
 	if (r->plan.shadow_map) {
 		struct aa_gpu_graphics_desc sd = {
@@ -171,6 +171,17 @@ static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 	return 0;
 }
 
+static const VkFormat scene_output_formats[AA_SCENE_OUTPUT_COUNT] = {
+	VK_FORMAT_R16G16_SFLOAT,       /* velocity */
+	VK_FORMAT_R32_UINT,            /* model ID */
+	VK_FORMAT_R32G32B32A32_SFLOAT, /* world position */
+	VK_FORMAT_R16G16B16A16_SFLOAT, /* geometric normal */
+	VK_FORMAT_R32G32_SFLOAT,       /* unlit luma, linear depth */
+};
+static const char *const scene_output_names[AA_SCENE_OUTPUT_COUNT] = {
+	"velocity", "model ids", "world position", "geometric normal", "unlit luma + depth",
+};
+
 /* The render pass and pipelines of one kind of scene target, created on first use. */
 static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_desc *d, struct aa_error *err)
 {
@@ -181,6 +192,8 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "too many scene target kinds");
 	if (d->samples > 1 && !(r->gpu->color_sample_counts & d->samples))
 		return aa_error_set(err, AA_ERR_GPU, "", "the device cannot render %u samples per pixel", d->samples);
+	if (d->outputs && (d->samples > 1 || d->edge_distances))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "G-buffer outputs need a plain single-sample target");
 	struct aa_scene_variant *v = &r->variants[r->variant_count];
 	memset(v, 0, sizeof *v);
 	v->desc = *d;
@@ -190,13 +203,20 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 		.depth_format = AA_DEPTH_FORMAT, .depth_readable = d->depth_readable,
 		.samples = d->samples, .resolve = d->samples > 1,
 	};
+	if (d->outputs) {
+		pass.color_count = 1 + AA_SCENE_OUTPUT_COUNT;
+		for (int i = 0; i < AA_SCENE_OUTPUT_COUNT; i++)
+			pass.color_formats[1 + i] = (d->outputs & (1u << i)) ? scene_output_formats[i]
+									     : VK_FORMAT_UNDEFINED;
+	}
 	if (aa_gpu_render_pass_create(r->gpu, &pass, &v->pass, err))
 		return -1;
 	VkBool32 constants[2] = {VK_FALSE, d->shade_at_pixel_centre};
 	VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
 	VkSpecializationInfo spec = {2, entries, sizeof constants, constants};
 	struct aa_gpu_graphics_desc g = {
-		.vert = "scene.vert", .frag = d->edge_distances ? "gbaa.frag" : "scene.frag",
+		.vert = d->outputs ? "gbuffer.vert" : "scene.vert",
+		.frag = d->outputs ? "gbuffer.frag" : d->edge_distances ? "gbaa.frag" : "scene.frag",
 		.geom = d->edge_distances ? "gbaa.geom" : NULL, .vertex_layout = AA_VERTEX_SCENE,
 		.render_pass = v->pass, .color_count = pass.color_count, .samples = d->samples ? d->samples : 1,
 		.depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
@@ -230,6 +250,7 @@ static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 				   r->gpu->sampler_linear, &r->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_image(r->gpu, set, 3, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				   r->gpu->sampler_shadow, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+		aa_gpu_write_buffer(r->gpu, set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->prev_models);
 	}
 	return 0;
 }
@@ -249,6 +270,9 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 	if (!r->models || upload_geometry(r, err) || upload_materials(r, err) || upload_textures(r, err) ||
 	    aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
 				 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, err) ||
+	    aa_gpu_buffer_create(gpu, &r->prev_models,
+				 sizeof(mat4) * (VkDeviceSize)(scene->object_count ? scene->object_count : 1),
+				 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, err) ||
 	    create_shadow_map(r, err) || create_pipelines(r, err) || create_descriptors(r, err)) {
 		if (!r->models)
 			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
@@ -290,6 +314,7 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	aa_gpu_buffer_destroy(g, &r->indices);
 	aa_gpu_buffer_destroy(g, &r->materials);
 	aa_gpu_buffer_destroy(g, &r->frame_ubo);
+	aa_gpu_buffer_destroy(g, &r->prev_models);
 	free(r->textures);
 	free(r->texture_sets);
 	free(r->mesh_first_index);
@@ -325,7 +350,7 @@ static mat4 camera_projection(const struct aa_camera *c, int width, int height)
 }
 
 void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
-			   struct aa_frame_ctx *ctx)
+			   const struct aa_camera *prev_camera, double prev_t, struct aa_frame_ctx *ctx)
 {
 	const struct aa_scene *s = r->scene;
 	ctx->camera = *camera;
@@ -335,12 +360,23 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	ctx->view = mat4_look_at(camera->position, camera->target, camera->up);
 	ctx->proj = camera_projection(camera, r->width, r->height);
 	ctx->view_proj = mat4_mul(ctx->proj, ctx->view);
-	for (int o = 0; o < s->object_count; o++)
+	ctx->prev_view_proj = ctx->view_proj;
+	if (prev_camera)
+		ctx->prev_view_proj = mat4_mul(camera_projection(prev_camera, r->width, r->height),
+					       mat4_look_at(prev_camera->position, prev_camera->target, prev_camera->up));
+	mat4 *prev = r->prev_models.mapped;
+	for (int o = 0; o < s->object_count; o++) {
 		r->models[o] = aa_object_model_matrix(&s->objects[o], t);
+		prev[o] = prev_camera ? aa_object_model_matrix(&s->objects[o], prev_t) : r->models[o];
+	}
 
 	struct aa_frame_uniforms *u = &r->uniforms;
 	memset(u, 0, sizeof *u);
 	memcpy(u->view_proj, ctx->view_proj.m, sizeof u->view_proj);
+	memcpy(u->prev_view_proj, ctx->prev_view_proj.m, sizeof u->prev_view_proj);
+	u->camera_planes[0] = camera->near_plane;
+	u->camera_planes[1] = camera->far_plane;
+	u->camera_planes[2] = camera->projection == AA_PROJECTION_ORTHOGRAPHIC ? 1.0f : 0.0f;
 	u->camera_position[0] = camera->position.x;
 	u->camera_position[1] = camera->position.y;
 	u->camera_position[2] = camera->position.z;
@@ -483,10 +519,11 @@ int aa_scene_target_create_desc(struct aa_renderer *r, struct aa_scene_target *t
 					VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 	VkImageUsageFlags depth_usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
 					(d.depth_readable ? VK_IMAGE_USAGE_SAMPLED_BIT : 0);
-	struct aa_gpu_image *att[4];
+	struct aa_gpu_image *att[4 + AA_SCENE_OUTPUT_COUNT];
 	int n = 0;
 	if (target_image(r, &t->color, width, height, AA_SCENE_COLOR_FORMAT,
-			 d.samples > 1 ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT : color_usage, d.samples, name,
+			 d.samples > 1 ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT : color_usage,
+			 d.samples, name,
 			 d.samples > 1 ? "colour samples" : "colour", info, err))
 		return -1;
 	att[n++] = &t->color;
@@ -495,6 +532,15 @@ int aa_scene_target_create_desc(struct aa_renderer *r, struct aa_scene_target *t
 				 "edge distances", info, err))
 			return -1;
 		att[n++] = &t->edges;
+	}
+	for (int i = 0; i < AA_SCENE_OUTPUT_COUNT; i++) {
+		if (!(d.outputs & (1u << i)))
+			continue;
+		if (target_image(r, &t->extra[i], width, height, scene_output_formats[i],
+				 color_usage & ~(VkImageUsageFlags)VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 1, name,
+				 scene_output_names[i], info, err))
+			return -1;
+		att[n++] = &t->extra[i];
 	}
 	if (target_image(r, &t->depth, width, height, AA_DEPTH_FORMAT, depth_usage, d.samples, name,
 			 d.samples > 1 ? "depth samples" : "depth", info, err))
@@ -519,6 +565,8 @@ void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t)
 	aa_gpu_image_destroy(r->gpu, &t->depth);
 	aa_gpu_image_destroy(r->gpu, &t->resolved);
 	aa_gpu_image_destroy(r->gpu, &t->edges);
+	for (int i = 0; i < AA_SCENE_OUTPUT_COUNT; i++)
+		aa_gpu_image_destroy(r->gpu, &t->extra[i]);
 	memset(t, 0, sizeof *t);
 }
 
@@ -527,12 +575,16 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 {
 	const struct aa_scene_variant *v = &r->variants[t->variant];
 	const float *bg = r->scene->background;
-	/* attachment order: colour, [edges], depth, [resolve] */
-	VkClearValue clears[4];
+	/* attachment order: colour, [edges], [outputs], depth, [resolve] */
+	VkClearValue clears[4 + AA_SCENE_OUTPUT_COUNT];
 	int n = 0;
 	clears[n++] = (VkClearValue){.color = {.float32 = {bg[0], bg[1], bg[2], 1.0f}}};
 	if (v->desc.edge_distances) /* (0.5, 0.5): no edge in this pixel (GBAA's "nothing to blend") */
 		clears[n++] = (VkClearValue){.color = {.float32 = {0.5f, 0.5f, 0.0f, 0.0f}}};
+	for (int i = 0; i < AA_SCENE_OUTPUT_COUNT; i++)
+		if (v->desc.outputs & (1u << i)) /* background: no motion, id 0, w 0, depth at the far plane */
+			clears[n++] = (VkClearValue){.color = {.float32 = {0.0f, i == 4 ? r->uniforms.camera_planes[1]
+										      : 0.0f, 0.0f, 0.0f}}};
 	clears[n++] = (VkClearValue){.depthStencil = {0.0f, 0}}; /* reversed-Z: far is 0 */
 	clears[n++] = (VkClearValue){.color = {.float32 = {0, 0, 0, 0}}};
 	aa_gpu_begin_pass(cmd, v->pass, t->framebuffer, t->width, t->height, clears, n);
@@ -543,6 +595,8 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 	t->resolved.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 	t->edges.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	for (int i = 0; i < AA_SCENE_OUTPUT_COUNT; i++)
+		t->extra[i].layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 	t->depth.layout = v->desc.depth_readable ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
 						 : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 }

@@ -18,10 +18,12 @@
 /* std140 layout of `Frame` in shaders/common.glsl */
 struct aa_frame_uniforms {
 	float view_proj[16];
+	float prev_view_proj[16];
 	float shadow_view_proj[16];
 	float camera_position[4];
 	float ambient[4];
 	float frame_size[4];
+	float camera_planes[4];
 	int32_t counts[4];
 	struct {
 		float position_type[4];
@@ -49,8 +51,20 @@ struct aa_draw_push {
 
 /* What a scene target holds beyond one colour sample and depth per pixel. Each distinct description is a
  * render pass + pipeline variant, created on first use and cached by the renderer. */
+/* Extra per-pixel outputs of the G-buffer variant (gbuffer.vert/.frag), at fixed colour locations. */
+enum aa_scene_output {
+	AA_OUT_VELOCITY = 1u << 0, /* location 1, RG16F: screen motion in pixels since the previous frame,
+				    * camera and object motion, without jitter; history is at p - velocity */
+	AA_OUT_IDS = 1u << 1,      /* location 2, R32UI: the object's model_id (0 = background) */
+	AA_OUT_POSITION = 1u << 2, /* location 3, RGBA32F: world position, w = 1 (0 = background) */
+	AA_OUT_NORMAL = 1u << 3,   /* location 4, RGBA16F: geometric (triangle) normal, w = 1 */
+	AA_OUT_SURFACE = 1u << 4,  /* location 5, RG32F: unlit luma (albedo), linear view depth */
+};
+#define AA_SCENE_OUTPUT_COUNT 5
+
 struct aa_scene_target_desc {
 	uint32_t samples;           /* 1, or a hardware MSAA count the device supports (resolved by box) */
+	unsigned outputs;           /* AA_OUT_* bits: a G-buffer pass; only single-sample targets */
 	bool depth_readable;        /* depth is stored and left sampleable (depth edge detection) */
 	bool edge_distances;        /* GBAA: a geometry shader writes distances to triangle edges (RG16F) */
 	bool shade_at_pixel_centre; /* virtual MSAA samples: jittered geometry, shading at the pixel centre;
@@ -68,6 +82,7 @@ struct aa_scene_target {
 	struct aa_gpu_image color, depth;
 	struct aa_gpu_image resolved;  /* samples > 1: the box-resolved single-sample colour */
 	struct aa_gpu_image edges;     /* edge_distances: RG16F signed distances in pixels */
+	struct aa_gpu_image extra[AA_SCENE_OUTPUT_COUNT]; /* outputs: [i] for bit i (velocity, ids, ...) */
 	struct aa_gpu_image *output;   /* resolved colour when multisampled, else &color */
 	VkFramebuffer framebuffer;
 	int width, height;
@@ -83,6 +98,7 @@ struct aa_frame_ctx {
 	int width, height;
 	struct aa_camera camera;
 	mat4 view, proj, view_proj; /* unjittered */
+	mat4 prev_view_proj;        /* previous frame's, unjittered (= view_proj when there is none) */
 	VkCommandBuffer cmd;
 	struct aa_gpu_timer *timer;
 	struct aa_gpu_image *output; /* set by the method: linear RGBA16F, width x height */
@@ -109,6 +125,7 @@ struct aa_renderer {
 	VkDescriptorPool pool;
 	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
 	struct aa_frame_uniforms uniforms;
+	struct aa_gpu_buffer prev_models; /* per object, previous frame's model matrix (host-visible) */
 	mat4 *models;                    /* per object, this frame */
 	mat4 shadow_view_proj;
 };
@@ -118,9 +135,10 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 void aa_renderer_destroy(struct aa_renderer *r);
 
 /* Sets the camera and object transforms for time t and writes the frame uniforms. Call before recording
- * a frame's command buffers (the uniform buffer is shared by everything recorded for the frame). */
+ * a frame's command buffers (the uniform buffer is shared by everything recorded for the frame).
+ * prev_camera/prev_t: the previous frame, for velocity; NULL (first frame, camera cut): no motion. */
 void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
-			   struct aa_frame_ctx *ctx);
+			   const struct aa_camera *prev_camera, double prev_t, struct aa_frame_ctx *ctx);
 /* Records the shadow-map pass (only when the plan has one). */
 void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd);
 

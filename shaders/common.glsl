@@ -16,11 +16,13 @@ struct Light {
 };
 
 layout(std140, set = 0, binding = 0) uniform Frame {
-	mat4 view_proj;
+	mat4 view_proj;       // unjittered; jitter is added per draw after projection
+	mat4 prev_view_proj;  // the previous frame's (for velocity); equal to view_proj after a cut
 	mat4 shadow_view_proj;
 	vec4 camera_position;
 	vec4 ambient;
 	vec4 frame_size;      // xy: the frame's width and height in pixels
+	vec4 camera_planes;   // x: near, y: far, z: 1 if orthographic
 	ivec4 counts;         // x: light count, y: shadow map enabled
 	Light lights[MAX_LIGHTS];
 } frame;
@@ -38,6 +40,11 @@ layout(std430, set = 0, binding = 1) readonly buffer Materials {
 
 layout(set = 0, binding = 2) uniform sampler2D material_texture;
 layout(set = 0, binding = 3) uniform sampler2DShadow shadow_map;
+
+// Previous frame's model matrix per object, indexed by object_id - 1 (for velocity).
+layout(std430, set = 0, binding = 4) readonly buffer PreviousModels {
+	mat4 prev_models[];
+};
 
 layout(push_constant) uniform Draw {
 	mat4 model;

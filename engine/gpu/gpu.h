@@ -69,7 +69,8 @@ void aa_gpu_buffer_destroy(struct aa_gpu *gpu, struct aa_gpu_buffer *buf);
 /* Creates a device-local buffer filled with data (through a staging copy). */
 int aa_gpu_buffer_upload(struct aa_gpu *gpu, struct aa_gpu_buffer *buf, const void *data, VkDeviceSize size,
 			 VkBufferUsageFlags usage, struct aa_error *err);
-/* Uploads mip levels of an RGBA8 image (levels[i] tightly packed) and leaves it SHADER_READ_ONLY. */
+/* Uploads mip levels of an RGBA8 image (levels[i] tightly packed) and leaves it SHADER_READ_ONLY. Other
+ * 8-bit formats (RG8, R8) work too: the texel size comes from img->format. */
 int aa_gpu_image_upload_rgba8(struct aa_gpu *gpu, struct aa_gpu_image *img, const uint8_t *const *levels,
 			      struct aa_error *err);
 
@@ -88,10 +89,11 @@ uint32_t aa_gpu_format_bytes(VkFormat format);
  * colour attachments when samples > 1. Final layouts: colour -> SHADER_READ_ONLY_OPTIMAL (loaded colour
  * attachments start and stay COLOR_ATTACHMENT_OPTIMAL, for accumulation),
  * depth -> DEPTH_STENCIL_ATTACHMENT_OPTIMAL (or SHADER_READ_ONLY if depth_readable). */
+#define AA_GPU_MAX_COLOR 8
 struct aa_gpu_pass_desc {
-	int color_count;
-	VkFormat color_formats[4];
-	bool color_load[4];      /* keep existing contents instead of clearing */
+	int color_count;         /* colour locations; a location with VK_FORMAT_UNDEFINED has no attachment */
+	VkFormat color_formats[AA_GPU_MAX_COLOR];
+	bool color_load[AA_GPU_MAX_COLOR]; /* keep existing contents instead of clearing */
 	VkFormat depth_format;   /* VK_FORMAT_UNDEFINED: none */
 	bool depth_readable;
 	uint32_t samples;

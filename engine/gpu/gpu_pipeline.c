@@ -26,7 +26,9 @@ int aa_gpu_layout_create(struct aa_gpu *gpu, const VkDescriptorType *types, cons
 {
 	memset(out, 0, sizeof *out);
 	VkDescriptorSetLayoutBinding b[16];
-	for (int i = 0; i < binding_count && i < 16; i++)
+	if (binding_count > 16)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "at most 16 descriptor bindings");
+	for (int i = 0; i < binding_count; i++)
 		b[i] = (VkDescriptorSetLayoutBinding){
 			.binding = (uint32_t)i,
 			.descriptorType = types[i],
@@ -121,8 +123,8 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 		.depthWriteEnable = d->depth_write,
 		.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, /* reversed-Z */
 	};
-	VkPipelineColorBlendAttachmentState cb[4];
-	for (int i = 0; i < 4; i++)
+	VkPipelineColorBlendAttachmentState cb[AA_GPU_MAX_COLOR];
+	for (int i = 0; i < AA_GPU_MAX_COLOR; i++)
 		cb[i] = (VkPipelineColorBlendAttachmentState){
 			.blendEnable = d->blend == AA_BLEND_ADD,
 			.srcColorBlendFactor = VK_BLEND_FACTOR_ONE,

@@ -247,10 +247,10 @@ int aa_gpu_buffer_upload(struct aa_gpu *gpu, struct aa_gpu_buffer *buf, const vo
 int aa_gpu_image_upload_rgba8(struct aa_gpu *gpu, struct aa_gpu_image *img, const uint8_t *const *levels,
 			      struct aa_error *err)
 {
-	VkDeviceSize total = 0;
+	VkDeviceSize total = 0, bpp = aa_gpu_format_bytes(img->format); /* RGBA8, RG8 or R8 */
 	for (uint32_t l = 0; l < img->mip_levels; l++) {
 		uint32_t w = (uint32_t)img->width >> l, h = (uint32_t)img->height >> l;
-		total += (VkDeviceSize)(w ? w : 1) * (h ? h : 1) * 4;
+		total += (VkDeviceSize)(w ? w : 1) * (h ? h : 1) * bpp;
 	}
 	struct aa_gpu_buffer staging;
 	if (aa_gpu_buffer_create(gpu, &staging, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, err))
@@ -262,13 +262,13 @@ int aa_gpu_image_upload_rgba8(struct aa_gpu *gpu, struct aa_gpu_image *img, cons
 		uint32_t w = (uint32_t)img->width >> l, h = (uint32_t)img->height >> l;
 		w = w ? w : 1;
 		h = h ? h : 1;
-		memcpy((uint8_t *)staging.mapped + offset, levels[l], (size_t)w * h * 4);
+		memcpy((uint8_t *)staging.mapped + offset, levels[l], (size_t)(w * h * bpp));
 		regions[l] = (VkBufferImageCopy){
 			.bufferOffset = offset,
 			.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1},
 			.imageExtent = {w, h, 1},
 		};
-		offset += (VkDeviceSize)w * h * 4;
+		offset += (VkDeviceSize)w * h * bpp;
 	}
 	VkCommandBuffer cmd;
 	int rc = aa_gpu_begin(gpu, &cmd, err);
@@ -314,11 +314,15 @@ int aa_gpu_record_readback(struct aa_gpu *gpu, VkCommandBuffer cmd, struct aa_gp
 int aa_gpu_render_pass_create(struct aa_gpu *gpu, const struct aa_gpu_pass_desc *desc, VkRenderPass *out,
 			      struct aa_error *err)
 {
-	VkAttachmentDescription att[9];
-	VkAttachmentReference color_refs[4], resolve_refs[4], depth_ref;
+	VkAttachmentDescription att[2 * AA_GPU_MAX_COLOR + 1];
+	VkAttachmentReference color_refs[AA_GPU_MAX_COLOR], resolve_refs[AA_GPU_MAX_COLOR], depth_ref;
 	uint32_t n = 0;
 	VkSampleCountFlagBits samples = (VkSampleCountFlagBits)(desc->samples ? desc->samples : 1);
 	for (int i = 0; i < desc->color_count; i++) {
+		if (desc->color_formats[i] == VK_FORMAT_UNDEFINED) { /* the shader's writes there are dropped */
+			color_refs[i] = (VkAttachmentReference){VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
+			continue;
+		}
 		att[n] = (VkAttachmentDescription){
 			.format = desc->color_formats[i],
 			.samples = samples,
@@ -351,6 +355,11 @@ int aa_gpu_render_pass_create(struct aa_gpu *gpu, const struct aa_gpu_pass_desc 
 	bool resolve = desc->resolve && samples > 1;
 	if (resolve)
 		for (int i = 0; i < desc->color_count; i++) {
+			if (desc->color_formats[i] == VK_FORMAT_UNDEFINED) {
+				resolve_refs[i] = (VkAttachmentReference){VK_ATTACHMENT_UNUSED,
+									  VK_IMAGE_LAYOUT_UNDEFINED};
+				continue;
+			}
 			att[n] = (VkAttachmentDescription){
 				.format = desc->color_formats[i],
 				.samples = VK_SAMPLE_COUNT_1_BIT,
@@ -394,7 +403,7 @@ int aa_gpu_render_pass_create(struct aa_gpu *gpu, const struct aa_gpu_pass_desc 
 int aa_gpu_framebuffer_create(struct aa_gpu *gpu, VkRenderPass pass, struct aa_gpu_image *const *attachments,
 			      int count, VkFramebuffer *out, struct aa_error *err)
 {
-	VkImageView views[9];
+	VkImageView views[2 * AA_GPU_MAX_COLOR + 1];
 	for (int i = 0; i < count; i++)
 		views[i] = attachments[i]->view;
 	VkFramebufferCreateInfo ci = {
