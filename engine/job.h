@@ -34,6 +34,8 @@ struct aa_job_spec {
 	int method_count;
 	struct aa_method_spec methods[AA_MAX_METHODS];
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
+	int inject_nonfinite_frame; /* tests only, not in job JSON: this frame's shading emits NaN/Inf in a
+				     * sparse pixel pattern (-1: never) */
 	char name[128];            /* optional user label of the job */
 };
 
@@ -91,6 +93,7 @@ struct aa_reference_frame {
 	double convergence_psnr;   /* PSNR (8-bit sRGB) of the N/2-sample vs the N-sample image; NAN if identical */
 	double convergence_mse;
 	long nonfinite;            /* NaN/Inf values in the accumulated float image (must be 0) */
+	bool reused;               /* static camera, nothing moves: frame 0's reference, not re-rendered */
 };
 
 struct aa_reference_result {
@@ -146,7 +149,8 @@ double aa_percentile(const double *values, int n, double p);
 enum aa_event_type {
 	AA_EVENT_JOB_STARTED,      /* result->plan, device and scene are filled */
 	AA_EVENT_REFERENCE_FRAME,  /* frame's reference done; image = reference image */
-	AA_EVENT_METHOD_FRAME,     /* method_index's frame done; image = its output; diff = |diff| x 4 */
+	AA_EVENT_METHOD_FRAME,     /* method_index's frame done; image = its output; diff = |diff| x 4;
+	                            * flip_map = FLIP error map */
 	AA_EVENT_PROGRESS,         /* done/total units of work */
 	AA_EVENT_JOB_FINISHED,
 };
@@ -160,6 +164,7 @@ struct aa_event {
 	const struct aa_image_rgba8 *image;  /* 8-bit sRGB, as written to PNG and scored */
 	const struct aa_image_rgbaf *linear; /* the same frame in linear float, before encoding */
 	const struct aa_image_rgba8 *diff;
+	const struct aa_image_rgba8 *flip_map; /* METHOD_FRAME: the FLIP error map in the magma colour map */
 	int done, total;           /* PROGRESS */
 };
 

@@ -171,9 +171,17 @@ static int setup(struct job_state *js, struct aa_error *err)
 	return 0;
 }
 
-static int render_reference(struct job_state *js, int ordinal, struct aa_error *err)
+static int render_reference(struct job_state *js, int ordinal, bool reuse, struct aa_error *err)
 {
 	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
+	if (reuse) {
+		/* a held camera over a scene where nothing moves: every frame's reference is the first one */
+		*rf = js->result->reference.frames[0];
+		rf->frame = js->spec->first_frame + ordinal;
+		rf->reused = true;
+		js->result->reference.frame_count = ordinal + 1;
+		return 0;
+	}
 	rf->frame = js->spec->first_frame + ordinal;
 	if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms, err))
 		return -1;
@@ -279,6 +287,7 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	int total = spec->frames * (1 + spec->method_count), done = 0;
 	const struct aa_camera_path *path = rc == 0 ? aa_scene_find_path(js.scene, spec->path) : NULL;
 	bool hold_first = strcmp(spec->path, "static") == 0;
+	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
 	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
 	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
 		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
@@ -291,9 +300,10 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 		aa_camera_path_eval(path, hold_first, t_before - 1.0 / fps, t_before, &prev_cam, &cut_before);
 		ctx.cut |= ordinal == 0;
 		bool has_prev = ctx.frame > 0 && !(ctx.cut && ordinal > 0);
+		js.renderer->inject_nonfinite = ctx.frame == spec->inject_nonfinite_frame;
 		aa_renderer_set_frame(js.renderer, &cam, t, has_prev ? &prev_cam : NULL, t_before, &ctx);
 
-		rc = render_reference(&js, ordinal, err);
+		rc = render_reference(&js, ordinal, ordinal > 0 && still, err);
 		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
 				       .frame_ordinal = ordinal, .image = &js.ref8, .linear = &js.full};
 		if (rc == 0)

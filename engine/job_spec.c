@@ -299,6 +299,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->first_frame = 0;
 	spec->reference_samples = 64;
 	spec->keep_frames = true;
+	spec->inject_nonfinite_frame = -1;
 	/* the default comparison: no AA against 16x supersampling */
 	const char *defaults[] = {"none", "ssaa"};
 	for (int i = 0; i < 2; i++) {

@@ -401,6 +401,7 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 		u->counts[0] = i + 1;
 	}
 	u->counts[1] = shadow_light >= 0;
+	u->counts[2] = r->inject_nonfinite;
 	if (shadow_light >= 0) {
 		vec3 c;
 		float radius;

@@ -128,6 +128,7 @@ struct aa_renderer {
 	struct aa_gpu_buffer prev_models; /* per object, previous frame's model matrix (host-visible) */
 	mat4 *models;                    /* per object, this frame */
 	mat4 shadow_view_proj;
+	bool inject_nonfinite;           /* stability tests: the next set_frame poisons some pixels */
 };
 
 int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_frame_plan *plan,

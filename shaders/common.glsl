@@ -23,7 +23,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 	vec4 ambient;
 	vec4 frame_size;      // xy: the frame's width and height in pixels
 	vec4 camera_planes;   // x: near, y: far, z: 1 if orthographic
-	ivec4 counts;         // x: light count, y: shadow map enabled
+	ivec4 counts;         // x: light count, y: shadow map enabled, z: inject NaN/Inf (stability tests)
 	Light lights[MAX_LIGHTS];
 } frame;
 

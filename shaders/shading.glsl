@@ -34,6 +34,14 @@ float shadow_visibility(vec3 world, float ndotl)
 // Lit linear colour of a surface point; base is the surface colour (alpha handled by the caller).
 vec3 shade(Material m, vec4 base, vec3 world, vec3 normal, bool front_facing)
 {
+	// Stability tests poison a sparse pattern of pixels with NaN and +Inf: nothing downstream may keep them.
+	if (frame.counts.z != 0) {
+		ivec2 p = ivec2(gl_FragCoord.xy);
+		if ((p.x + 3 * p.y) % 11 == 0)
+			return vec3(uintBitsToFloat(0x7fc00000u)); // NaN
+		if ((p.x + 3 * p.y) % 11 == 5)
+			return vec3(uintBitsToFloat(0x7f800000u)); // +Inf
+	}
 	uint flags = uint(m.shading.w);
 	if ((flags & MATERIAL_UNLIT) != 0u)
 		return base.rgb;
