@@ -12,5 +12,3 @@ tests_integration_test_analytic_edges_SOURCES = tests/integration/test_analytic_
 tests_integration_test_analytic_edges_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_analytic_edges_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_analytic_edges
-include $(srcdir)/engine/methods/smaa.mk
-include $(srcdir)/engine/methods/fxaa.mk
