@@ -156,9 +156,9 @@ void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t);
 void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
 			    float jitter_x_px, float jitter_y_px);
 
-/* A full-screen pass: a fragment shader reads up to four sampled images (bindings 0..3, in order) and
+/* A full-screen pass: a fragment shader reads up to eight sampled images (bindings 0..7, in order) and
  * writes one colour target of any format. Used by every post-process method. */
-#define AA_PASS_MAX_SOURCES 4
+#define AA_PASS_MAX_SOURCES 8
 struct aa_fullscreen_desc {
 	const char *frag;
 	int source_count;

@@ -8,12 +8,16 @@ extern const struct aa_method aa_method_ssaa;
 extern const struct aa_method aa_method_msaa;
 extern const struct aa_method aa_method_gbaa;
 extern const struct aa_method aa_method_copy;
+extern const struct aa_method aa_method_taa;
+extern const struct aa_method aa_method_taa_sobel;
 
 const struct aa_method *const aa_methods[] = {
 	&aa_method_none,
 	&aa_method_ssaa,
 	&aa_method_msaa,
 	&aa_method_gbaa,
+	&aa_method_taa,
+	&aa_method_taa_sobel,
 	&aa_method_copy,
 };
 const int aa_method_count = (int)(sizeof aa_methods / sizeof aa_methods[0]);

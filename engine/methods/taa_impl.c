@@ -1,0 +1,168 @@
+/* TAA machinery (seed 001): jittered G-buffer scene pass, reprojection with the closest-depth velocity,
+ * colour-box clipping in YCoCg, luminance feedback into float history, sharpening for display. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "../temporal/jitter.h"
+#include "taa_impl.h"
+
+struct aa_method_state {
+	struct aa_renderer *r;
+	struct aa_taa_config config;
+	struct aa_scene_target scene;
+	struct aa_gpu_image history[2];     /* ping-pong: frame k reads [k&1], writes [(k+1)&1] */
+	struct aa_gpu_image output;
+	struct aa_gpu_image edges, sobel[2]; /* master: raw and stabilised Sobel images */
+	struct aa_fullscreen_pass resolve[2], sharpen[2], edge_pass, stabilise[2];
+	int parity;
+	bool history_valid;
+	int history_frames;                 /* frames accumulated since the last reset */
+};
+
+struct taa_push {
+	float feedback_min, feedback_max;
+	int32_t history_valid;
+	float history_frames;
+};
+
+void aa_taa_destroy(struct aa_method_state *s)
+{
+	struct aa_renderer *r = s->r;
+	for (int i = 0; i < 2; i++) {
+		aa_fullscreen_pass_destroy(r, &s->resolve[i]);
+		aa_fullscreen_pass_destroy(r, &s->sharpen[i]);
+		aa_fullscreen_pass_destroy(r, &s->stabilise[i]);
+		aa_gpu_image_destroy(r->gpu, &s->history[i]);
+		aa_gpu_image_destroy(r->gpu, &s->sobel[i]);
+	}
+	aa_fullscreen_pass_destroy(r, &s->edge_pass);
+	aa_gpu_image_destroy(r->gpu, &s->edges);
+	aa_gpu_image_destroy(r->gpu, &s->output);
+	aa_scene_target_destroy(r, &s->scene);
+	free(s);
+}
+
+static const VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+					     VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+static int create_images(struct aa_method_state *s, struct aa_method_result *info, struct aa_error *err)
+{
+	struct aa_renderer *r = s->r;
+	bool master = s->config.master;
+	unsigned outputs = AA_OUT_VELOCITY | AA_OUT_SURFACE | (master ? AA_OUT_IDS : 0);
+	struct aa_scene_target_desc d = {.samples = 1, .outputs = outputs};
+	/* Master TAA keeps linear depth in the history's alpha, which needs float32 precision */
+	VkFormat history_format = master ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+	if (aa_scene_target_create_desc(r, &s->scene, r->width, r->height, &d, "scene", info, err))
+		return -1;
+	for (int i = 0; i < 2; i++)
+		if (aa_renderer_image_create(r, &s->history[i], r->width, r->height, history_format, target_usage,
+					     i ? "history B" : "history A", info, err))
+			return -1;
+	if (aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT, target_usage,
+				     "sharpened output", info, err))
+		return -1;
+	if (master) {
+		if (aa_renderer_image_create(r, &s->edges, r->width, r->height, VK_FORMAT_R16_SFLOAT, target_usage,
+					     "sobel edges", info, err))
+			return -1;
+		for (int i = 0; i < 2; i++)
+			if (aa_renderer_image_create(r, &s->sobel[i], r->width, r->height, VK_FORMAT_R16_SFLOAT,
+						     target_usage, i ? "sobel history B" : "sobel history A", info,
+						     err))
+				return -1;
+	}
+	return 0;
+}
+
+static int create_passes(struct aa_method_state *s, struct aa_error *err)
+{
+	struct aa_renderer *r = s->r;
+	bool master = s->config.master;
+	struct aa_gpu_image *velocity = &s->scene.extra[0], *ids = &s->scene.extra[1], *surface = &s->scene.extra[4];
+	if (master && aa_fullscreen_pass_create(r, &s->edge_pass, &(struct aa_fullscreen_desc){
+			.frag = "taa_sobel_edges.frag", .source_count = 2, .sources = {s->scene.output, surface},
+			.target = &s->edges}, err))
+		return -1;
+	for (int k = 0; k < 2; k++) {
+		int read = k, write = 1 - k;
+		/* Master TAA also reads the model IDs and this frame's stabilised Sobel image */
+		struct aa_fullscreen_desc resolve = {
+			.frag = master ? "taa_master_resolve.frag" : "taa_resolve.frag",
+			.source_count = master ? 6 : 4,
+			.sources = {s->scene.output, &s->history[read], velocity, surface, ids, &s->sobel[write]},
+			.linear = {false, true, false, false, false, false},
+			.target = &s->history[write], .push_size = sizeof(struct taa_push),
+		};
+		if (aa_fullscreen_pass_create(r, &s->resolve[k], &resolve, err) ||
+		    aa_fullscreen_pass_create(r, &s->sharpen[k], &(struct aa_fullscreen_desc){
+				.frag = "taa_sharpen.frag", .source_count = 1, .sources = {&s->history[write]},
+				.target = &s->output, .push_size = sizeof(int32_t)}, err))
+			return -1;
+		if (master && aa_fullscreen_pass_create(r, &s->stabilise[k], &(struct aa_fullscreen_desc){
+				.frag = "taa_sobel_stabilise.frag", .source_count = 3,
+				.sources = {&s->edges, &s->sobel[read], velocity}, .linear = {false, true, false},
+				.target = &s->sobel[write], .push_size = sizeof(struct taa_push)}, err))
+			return -1;
+	}
+	return 0;
+}
+
+int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,
+		  struct aa_method_state **out, struct aa_error *err)
+{
+	struct aa_method_state *s = calloc(1, sizeof *s);
+	if (!s)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	s->r = r;
+	s->config = *config;
+	snprintf(info->path_taken, sizeof info->path_taken, "Halton(2,3) x%d jitter, %s clip box, %s history",
+		 config->jitter_length, config->master ? "Sobel/ID/depth" : "3x3+cross",
+		 config->master ? "RGBA32F" : "RGBA16F");
+	if (create_images(s, info, err) || create_passes(s, err)) {
+		aa_taa_destroy(s);
+		return -1;
+	}
+	*out = s;
+	return 0;
+}
+
+void aa_taa_reset(struct aa_method_state *s)
+{
+	s->history_valid = false;
+	s->history_frames = 0;
+}
+
+int aa_taa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err)
+{
+	struct aa_renderer *r = s->r;
+	float jitter[2];
+	aa_jitter_halton(ctx->frame, s->config.jitter_length, jitter);
+	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "scene-gbuffer");
+	aa_renderer_draw_scene(r, ctx->cmd, &s->scene, jitter[0], jitter[1]);
+	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	int k = s->parity;
+	struct taa_push push = {s->config.feedback_min, s->config.feedback_max, s->history_valid,
+				(float)s->history_frames};
+	if (s->config.master) {
+		span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-sobel");
+		aa_fullscreen_pass_record(r, ctx->cmd, &s->edge_pass, NULL, 0);
+		/* the Sobel image settles faster than colour: the same feedback law, fixed range */
+		struct taa_push sobel_push = {0.5f, 0.9f, s->history_valid, (float)s->history_frames};
+		aa_fullscreen_pass_record(r, ctx->cmd, &s->stabilise[k], &sobel_push, sizeof sobel_push);
+		aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	}
+	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-resolve");
+	aa_fullscreen_pass_record(r, ctx->cmd, &s->resolve[k], &push, sizeof push);
+	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-sharpen");
+	int32_t kind = (int32_t)s->config.sharpen;
+	aa_fullscreen_pass_record(r, ctx->cmd, &s->sharpen[k], &kind, sizeof kind);
+	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	s->parity = 1 - k;
+	s->history_valid = true;
+	if (s->history_frames < 1000000)
+		s->history_frames++;
+	ctx->output = &s->output;
+	return 0;
+}
