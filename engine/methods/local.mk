@@ -15,3 +15,9 @@ tests_integration_test_analytic_edges_SOURCES = tests/integration/test_analytic_
 tests_integration_test_analytic_edges_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_analytic_edges_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_analytic_edges
+
+check_PROGRAMS += tests/integration/test_temporal
+tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c
+tests_integration_test_temporal_CFLAGS = $(TEST_CFLAGS)
+tests_integration_test_temporal_LDADD = $(TEST_LIBS)
+TESTS += tests/integration/test_temporal
