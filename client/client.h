@@ -2,7 +2,9 @@
 #ifndef AA_CLIENT_H
 #define AA_CLIENT_H
 
+#include <getopt.h>
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "job.h"
 
@@ -21,6 +23,57 @@ struct aa_cmd_entry {
 int cmd_run(int argc, char **argv);
 int cmd_scenes(int argc, char **argv);
 int cmd_methods(int argc, char **argv);
+
+int cmd_submit(int argc, char **argv);
+int cmd_watch(int argc, char **argv);
+int cmd_status(int argc, char **argv);
+int cmd_jobs(int argc, char **argv);
+int cmd_cancel(int argc, char **argv);
+int cmd_get(int argc, char **argv);
+int cmd_diff(int argc, char **argv);
+extern const char aa_diff_help[];
+
+/* job_args.c: the job flags of run and submit. The long options, for getopt_long with a longindex;
+ * aa_job_flag(cmd, option name, value, job) returns 0 (set), -1 (bad value, printed) or 1 (not a job flag). */
+#define AA_OPT_JOB 1000
+#define AA_JOB_LONG_OPTIONS \
+	{"scene", required_argument, 0, AA_OPT_JOB}, {"path", required_argument, 0, AA_OPT_JOB}, \
+	{"methods", required_argument, 0, AA_OPT_JOB}, {"frames", required_argument, 0, AA_OPT_JOB}, \
+	{"first-frame", required_argument, 0, AA_OPT_JOB}, {"size", required_argument, 0, AA_OPT_JOB}, \
+	{"reference-samples", required_argument, 0, AA_OPT_JOB}
+int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *job);
+json_t *aa_job_load_file(const char *cmd, const char *path);
+/* The job: argv[first] (a job file) if given, with the flags' fields over it; NULL after printing why. */
+json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *overrides);
+
+/* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
+ * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends
+ * the token of $AALAB_TOKEN or $AALAB_TOKEN_FILE. */
+struct aa_conn;
+int aa_conn_open(const char *address, struct aa_conn **out, char *err, size_t err_size);
+void aa_conn_close(struct aa_conn *c);
+int aa_conn_send(struct aa_conn *c, json_t *msg, const void *payload, size_t size);
+/* The next message; its payload (if it announced one) in *payload (malloc'ed). NULL at end of stream. */
+json_t *aa_conn_read(struct aa_conn *c, char **payload, size_t *size);
+json_t *aa_conn_request(struct aa_conn *c, json_t *msg, char **payload, size_t *size);
+/* Options of the service commands: [JOB] [--connect ADDRESS] [--json] and, where the command's help
+ * names them, --state, --out, --file, --no-images. Returns 0, 1 (help printed) or -1 (usage printed). */
+struct aa_service_args {
+	const char *connect, *job, *state, *out, *file;
+	bool json, no_images;
+};
+int aa_service_args(const char *cmd, const char *help, int argc, char **argv, struct aa_service_args *a);
+/* 0 for an ok reply; otherwise prints "aalab CMD: path: message" and returns the exit status. */
+int aa_reply_status(const char *cmd, json_t *reply);
+/* cmd_watch.c: streams a job's events with a progress bar (tty) or plain lines, or as JSON lines;
+ * returns the exit status (0 done, 1 failed or cancelled). */
+int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, bool json, bool quiet);
+/* cmd_get.c: downloads a job's files into dir (all, or results.json and report.html only). */
+int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images);
+/* cmd_get.c: the cost-vs-accuracy table from a results.json document. */
+void aa_print_results_table(json_t *results, FILE *out);
+/* cmd_submit.c: `aalab run` through the daemon: submit, watch, download into dir, print. */
+int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, bool images, bool print_json, bool quiet);
 
 /* table.c: the cost-vs-accuracy table and progress display */
 void aa_print_table(const struct aa_job_result *r, FILE *out);

@@ -31,7 +31,9 @@ static const char run_help[] =
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
 	"  --json                  print results.json to standard output instead of the table\n"
 	"  --quiet                 no progress display\n"
-	"  --local                 run in this process (the only mode until the daemon exists)\n"
+	"  --local                 run in this process even when aalabd is running\n"
+	"  --connect ADDRESS       run on this aalabd (unix:PATH or tcp:HOST:PORT); without it and without\n"
+	"                          --local, a daemon on the default socket is used when one answers\n"
 	"\n"
 	"Exit status: 0 done, 1 the job failed, 2 bad arguments or job (the message names the field).\n";
 
@@ -46,64 +48,12 @@ struct run_output {
 static int on_event(const struct aa_event *ev, void *user)
 {
 	struct run_output *o = user;
-	char rel[256];
-	switch (ev->type) {
-	case AA_EVENT_REFERENCE_FRAME:
-		if (o->images) {
-			aa_results_frame_relpath("frames", "reference", ev->frame_ordinal, rel, sizeof rel);
-			if (aa_results_write_image(o->dir, rel, ev->image, &o->write_err))
-				o->failed_writes++;
-		}
-		break;
-	case AA_EVENT_METHOD_FRAME:
-		if (o->images) {
-			const char *label = ev->result->methods[ev->method_index].label;
-			aa_results_frame_relpath("frames", label, ev->frame_ordinal, rel, sizeof rel);
-			if (aa_results_write_image(o->dir, rel, ev->image, &o->write_err))
-				o->failed_writes++;
-			aa_results_frame_relpath("diff", label, ev->frame_ordinal, rel, sizeof rel);
-			if (aa_results_write_image(o->dir, rel, ev->diff, &o->write_err))
-				o->failed_writes++;
-		}
-		break;
-	case AA_EVENT_PROGRESS:
-		if (!o->quiet)
-			aa_progress_update(ev->done, ev->total, "rendering");
-		break;
-	default:
-		break;
-	}
+	if (o->images && aa_results_write_event_images(o->dir, ev, &o->write_err))
+		o->failed_writes++;
+	if (ev->type == AA_EVENT_PROGRESS && !o->quiet)
+		aa_progress_update(ev->done, ev->total, "rendering");
 	/* a failed image write stops the job: carrying on would lose data silently */
 	return o->failed_writes > 0;
-}
-
-static int parse_int(const char *flag, const char *text, json_int_t *out)
-{
-	char *end;
-	errno = 0;
-	long long v = strtoll(text, &end, 10);
-	if (errno || end == text || *end) {
-		fprintf(stderr, "aalab run: %s: expected an integer, got '%s'\n", flag, text);
-		return -1;
-	}
-	*out = v;
-	return 0;
-}
-
-static json_t *load_job_file(const char *path)
-{
-	json_error_t jerr;
-	json_t *job = json_load_file(path, JSON_REJECT_DUPLICATES, &jerr);
-	if (!job) {
-		fprintf(stderr, "aalab run: %s:%d:%d: %s\n", path, jerr.line, jerr.column, jerr.text);
-		return NULL;
-	}
-	if (!json_is_object(job)) {
-		fprintf(stderr, "aalab run: %s: a job file holds a JSON object\n", path);
-		json_decref(job);
-		return NULL;
-	}
-	return job;
 }
 
 static int make_default_dir(const char *scene, char *out, size_t size)
@@ -148,88 +98,55 @@ static int mkdir_p(const char *dir)
 
 int cmd_run(int argc, char **argv)
 {
-	enum { OPT_SCENE = 256, OPT_PATH, OPT_METHODS, OPT_FRAMES, OPT_FIRST, OPT_SIZE, OPT_REF, OPT_OUT,
-	       OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_HELP };
+	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP };
 	static const struct option opts[] = {
-		{"scene", required_argument, 0, OPT_SCENE}, {"path", required_argument, 0, OPT_PATH},
-		{"methods", required_argument, 0, OPT_METHODS}, {"frames", required_argument, 0, OPT_FRAMES},
-		{"first-frame", required_argument, 0, OPT_FIRST}, {"size", required_argument, 0, OPT_SIZE},
-		{"reference-samples", required_argument, 0, OPT_REF}, {"out", required_argument, 0, OPT_OUT},
+		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
 		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
-	const char *out_dir = NULL, *device = NULL;
-	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO);
-	int status = AA_EXIT_USAGE, c;
-	json_int_t n;
+	const char *out_dir = NULL, *device = NULL, *connect = NULL;
+	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false;
+	int status = AA_EXIT_USAGE, c, idx;
 	optind = 1;
-	while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
 		switch (c) {
-		case OPT_SCENE: json_object_set_new(overrides, "scene", json_string(optarg)); break;
-		case OPT_PATH: json_object_set_new(overrides, "path", json_string(optarg)); break;
-		case OPT_SIZE: json_object_set_new(overrides, "size", json_string(optarg)); break;
-		case OPT_METHODS: {
-			char **list;
-			int count;
-			if (aa_split_methods(optarg, &list, &count)) {
-				fprintf(stderr, "aalab run: methods: cannot parse '%s'\n", optarg);
+		case AA_OPT_JOB:
+			if (aa_job_flag("run", opts[idx].name, optarg, overrides))
 				goto out;
-			}
-			json_t *arr = json_array();
-			for (int i = 0; i < count; i++)
-				json_array_append_new(arr, json_string(list[i]));
-			aa_free_strings(list, count);
-			json_object_set_new(overrides, "methods", arr);
-			break;
-		}
-		case OPT_FRAMES:
-			if (parse_int("frames", optarg, &n))
-				goto out;
-			json_object_set_new(overrides, "frames", json_integer(n));
-			break;
-		case OPT_FIRST:
-			if (parse_int("first_frame", optarg, &n))
-				goto out;
-			json_object_set_new(overrides, "first_frame", json_integer(n));
-			break;
-		case OPT_REF:
-			if (parse_int("reference.samples", optarg, &n))
-				goto out;
-			json_object_set_new(overrides, "reference", json_pack("{sI}", "samples", n));
 			break;
 		case OPT_OUT: out_dir = optarg; break;
 		case OPT_DEVICE: device = optarg; break;
 		case OPT_NO_IMAGES: images = false; break;
 		case OPT_JSON: print_json = true; break;
 		case OPT_QUIET: quiet = true; break;
-		case OPT_LOCAL: break;
+		case OPT_LOCAL: local = true; break;
+		case OPT_CONNECT: connect = optarg; break;
 		case OPT_HELP: fputs(run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(run_help, stderr); goto out;
 		}
 	}
-	json_t *job = NULL;
-	if (optind < argc) {
-		if (optind + 1 < argc) {
-			fprintf(stderr, "aalab run: one job file at most, got '%s' and '%s'\n", argv[optind],
-				argv[optind + 1]);
-			goto out;
-		}
-		job = load_job_file(argv[optind]);
-		if (!job)
-			goto out;
-	} else {
-		job = json_object();
-	}
-	json_object_update(job, overrides);
-
+	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
+	if (!job)
+		goto out;
 	struct aa_job_spec spec;
 	struct aa_error err = {0};
 	int rc = aa_job_spec_from_json(job, &spec, &err);
-	json_decref(job);
 	if (rc) {
 		fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
+		json_decref(job);
+		goto out;
+	}
+	/* A running aalabd does the work when one answers (or --connect names one). --local and --device run
+	 * here, and so does a scene given as a file path: the daemon takes scene names only. */
+	struct aa_conn *conn = NULL;
+	char cerr[1200];
+	bool remote = !local && !device && !strchr(spec.scene, '/');
+	if (remote && aa_conn_open(connect, &conn, cerr, sizeof cerr) && connect) {
+		fprintf(stderr, "aalab run: %s\n", cerr);
+		json_decref(job);
+		status = AA_EXIT_FAILED;
 		goto out;
 	}
 	char dir[1024];
@@ -237,12 +154,23 @@ int cmd_run(int argc, char **argv)
 		snprintf(dir, sizeof dir, "%s", out_dir);
 	else if (make_default_dir(spec.scene, dir, sizeof dir)) {
 		fprintf(stderr, "aalab run: cannot choose an output directory under results/\n");
+		aa_conn_close(conn);
+		json_decref(job);
 		goto out;
 	}
 	if (mkdir_p(dir)) {
 		fprintf(stderr, "aalab run: out: cannot create '%s': %s\n", dir, strerror(errno));
+		aa_conn_close(conn);
+		json_decref(job);
 		goto out;
 	}
+	if (conn) {
+		status = aa_run_remote(conn, job, dir, images, print_json, quiet);
+		aa_conn_close(conn);
+		json_decref(job);
+		goto out;
+	}
+	json_decref(job);
 
 	struct aa_engine *engine;
 	struct aa_engine_options eo = {.device = device};

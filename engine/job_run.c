@@ -253,7 +253,8 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	}
 	fr->nonfinite = count_nonfinite(&js->output);
 	aa_image_encode_srgb8(&js->output, &js->out8);
-	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err))
+	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err) ||
+	    aa_metrics_perceptual(&js->ref8, &js->out8, &fr->metrics, &js->flip8, err))
 		return -1;
 	diff_image(&js->ref8, &js->out8, &js->diff8);
 	js->result->methods[i].frame_count = ctx->ordinal + 1;

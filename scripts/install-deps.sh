@@ -4,7 +4,8 @@ set -e
 packages="build-essential autoconf automake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libopenimageio-dev openimageio-tools libjansson-dev libassimp-dev libcmocka-dev
-  python3 python3-numpy python3-skimage"
+  python3 python3-numpy python3-skimage
+  chromium systemd"
 missing=""
 for p in $packages; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -21,3 +21,7 @@ tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c
 tests_integration_test_temporal_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_temporal_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_temporal
+include $(srcdir)/engine/methods/smaa.mk
+include $(srcdir)/engine/methods/fxaa.mk
+include $(srcdir)/engine/methods/temporal2.mk
+include $(srcdir)/engine/methods/rsaa.mk

@@ -10,6 +10,12 @@ extern const struct aa_method aa_method_gbaa;
 extern const struct aa_method aa_method_copy;
 extern const struct aa_method aa_method_taa;
 extern const struct aa_method aa_method_taa_sobel;
+extern const struct aa_method aa_method_smaa;
+extern const struct aa_method aa_method_fxaa;
+extern const struct aa_method aa_method_fxaa_cs;
+extern const struct aa_method aa_method_asaa;
+extern const struct aa_method aa_method_t2msaa;
+extern const struct aa_method aa_method_rsaa;
 
 const struct aa_method *const aa_methods[] = {
 	&aa_method_none,
@@ -19,6 +25,12 @@ const struct aa_method *const aa_methods[] = {
 	&aa_method_taa,
 	&aa_method_taa_sobel,
 	&aa_method_copy,
+	&aa_method_smaa,
+	&aa_method_fxaa,
+	&aa_method_fxaa_cs,
+	&aa_method_asaa,
+	&aa_method_t2msaa,
+	&aa_method_rsaa,
 };
 const int aa_method_count = (int)(sizeof aa_methods / sizeof aa_methods[0]);
 

@@ -43,7 +43,7 @@ void aa_taa_destroy(struct aa_method_state *s)
 }
 
 static const VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-					     VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+					     VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
 static int create_images(struct aa_method_state *s, struct aa_method_result *info, struct aa_error *err)
 {
@@ -108,6 +108,26 @@ static int create_passes(struct aa_method_state *s, struct aa_error *err)
 	return 0;
 }
 
+/* History images start cleared and in the layout the resolve reads them in: the first frame binds them
+ * (and ignores them) before anything was written. */
+static int clear_history(struct aa_method_state *s, struct aa_error *err)
+{
+	VkCommandBuffer cmd;
+	if (aa_gpu_begin(s->r->gpu, &cmd, err))
+		return -1;
+	struct aa_gpu_image *images[4] = {&s->history[0], &s->history[1], &s->sobel[0], &s->sobel[1]};
+	VkClearColorValue zero = {.float32 = {0, 0, 0, 0}};
+	VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+	for (int i = 0; i < 4; i++) {
+		if (!images[i]->image)
+			continue;
+		aa_gpu_image_barrier(cmd, images[i], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+		vkCmdClearColorImage(cmd, images[i]->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+		aa_gpu_image_barrier(cmd, images[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	}
+	return aa_gpu_submit_wait(s->r->gpu, cmd, err);
+}
+
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,
 		  struct aa_method_state **out, struct aa_error *err)
 {
@@ -119,7 +139,7 @@ int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, str
 	snprintf(info->path_taken, sizeof info->path_taken, "Halton(2,3) x%d jitter, %s clip box, %s history",
 		 config->jitter_length, config->master ? "Sobel/ID/depth" : "3x3+cross",
 		 config->master ? "RGBA32F" : "RGBA16F");
-	if (create_images(s, info, err) || create_passes(s, err)) {
+	if (create_images(s, info, err) || create_passes(s, err) || clear_history(s, err)) {
 		aa_taa_destroy(s);
 		return -1;
 	}

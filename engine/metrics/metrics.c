@@ -2,6 +2,7 @@
 #include "metrics.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Rec. 709 luma weights, applied to sRGB-encoded values as the curve's definition says. */
@@ -94,7 +95,36 @@ int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_r
 		out->exceed[i] = (double)above / (double)n;
 	}
 	out->ssim = aa_ssim_rgba8(ref, test);
+	out->flip_mean = NAN;
+	for (int b = 0; b < AA_FOURIER_BANDS; b++)
+		out->fourier[b] = NAN;
 	return 0;
+}
+
+int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
+			  struct aa_metrics *out, struct aa_image_rgba8 *flip_image, struct aa_error *err)
+{
+	out->flip_mean = NAN;
+	if (check_same_size(ref->width, ref->height, test->width, test->height, err) != 0 ||
+	    !have_pixels(ref->pixels, test->pixels, err))
+		return -1;
+	size_t n = (size_t)ref->width * ref->height;
+	float *map = malloc(n * sizeof *map);
+	if (!map)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a %dx%d FLIP map", ref->width, ref->height);
+	struct aa_flip_stats stats;
+	int rc = aa_flip_ldr_rgba8(ref, test, NULL, map, err);
+	if (rc == 0 && aa_flip_pool(map, n, &stats) != 0)
+		rc = aa_error_set(err, AA_ERR_LIMIT, "", "out of memory pooling a %dx%d FLIP map", ref->width, ref->height);
+	if (rc == 0) {
+		out->flip_mean = stats.mean;
+		if (flip_image && flip_image->width == ref->width && flip_image->height == ref->height)
+			aa_flip_colorize(map, true, flip_image);
+	}
+	free(map);
+	if (rc == 0)
+		rc = aa_fourier_bands_rgba8(ref, test, out->fourier, err);
+	return rc;
 }
 
 int aa_metrics_psnr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,

@@ -5,6 +5,8 @@
 #include <stdbool.h>
 
 #include "../image/image.h"
+#include "flip.h"
+#include "fourier.h"
 
 /* The error-threshold curve (seed 002, Fig. 1): thresholds 0, 0.01, ..., 1.00 on luminance error. */
 #define AA_THRESHOLD_COUNT 101
@@ -20,11 +22,20 @@ struct aa_metrics {
 	/* share (0..1) of pixels whose luminance error |Y(test) - Y(ref)| > threshold i/100, where Y is
 	 * Rec. 709 luma of the sRGB-encoded values scaled to [0,1]. */
 	double exceed[AA_THRESHOLD_COUNT];
+	/* Filled by aa_metrics_perceptual; NAN until then (and in results.json, null). */
+	double flip_mean;  /* mean LDR-FLIP error (flip.h) at AA_FLIP_DEFAULT_PPD, 0 = identical, 1 = most */
+	double fourier[AA_FOURIER_BANDS]; /* the MSE split into low, mid and high frequencies (fourier.h) */
 };
 
 /* Compares two 8-bit sRGB images of equal size (alpha ignored). Returns -1 with err on size mismatch. */
 int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		       struct aa_metrics *out, struct aa_error *err);
+
+/* FLIP (mean over the map) and the Fourier bands of two 8-bit sRGB images, into out->flip_mean and
+ * out->fourier. When flip_image is not NULL (allocated at the images' size) it receives the FLIP error
+ * map in the magma colour map. Returns -1 with err on a size mismatch or when memory runs out. */
+int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
+			  struct aa_metrics *out, struct aa_image_rgba8 *flip_image, struct aa_error *err);
 
 /* Linear-float mode: MSE/PSNR on linear values with peak 1.0 (values are not clamped). */
 int aa_metrics_psnr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,

@@ -82,3 +82,25 @@ int aa_results_write_image(const char *dir, const char *relpath, const struct aa
 		return -1;
 	return aa_image_write_png(path, img, err);
 }
+
+int aa_results_write_event_images(const char *dir, const struct aa_event *ev, struct aa_error *err)
+{
+	char rel[AA_LABEL_MAX * 2 + 32];
+	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
+		aa_results_frame_relpath("frames", "reference", ev->frame_ordinal, rel, sizeof rel);
+		return aa_results_write_image(dir, rel, ev->image, err);
+	}
+	if (ev->type != AA_EVENT_METHOD_FRAME)
+		return 0;
+	const char *label = ev->result->methods[ev->method_index].label;
+	aa_results_frame_relpath("frames", label, ev->frame_ordinal, rel, sizeof rel);
+	if (aa_results_write_image(dir, rel, ev->image, err))
+		return -1;
+	aa_results_frame_relpath("diff", label, ev->frame_ordinal, rel, sizeof rel);
+	if (aa_results_write_image(dir, rel, ev->diff, err))
+		return -1;
+	if (!ev->flip_map)
+		return 0;
+	aa_results_frame_relpath("flip", label, ev->frame_ordinal, rel, sizeof rel);
+	return aa_results_write_image(dir, rel, ev->flip_map, err);
+}

@@ -475,11 +475,26 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 	card(o, "Methods", v, d);
 }
 
+/* Mean FLIP over the frames that have one; NAN when none. */
+static double flip_mean(const struct aa_method_result *m)
+{
+	double sum = 0;
+	int n = 0;
+	for (int f = 0; f < m->frame_count; f++)
+		if (isfinite(m->frames[f].metrics.flip_mean)) {
+			sum += m->frames[f].metrics.flip_mean;
+			n++;
+		}
+	return n ? sum / n : NAN;
+}
+
 static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum)
 {
 	fputs("<table>\n<tr><th>Method</th><th>Path taken</th><th class=\"n\">GPU ms/frame<br>median</th>"
 	      "<th class=\"n\">GPU ms<br>p90</th><th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
-	      "<th class=\"n\">PSNR dB<br>mean</th><th class=\"n\">PSNR dB<br>worst frame</th><th class=\"n\">SSIM<br>mean</th></tr>\n",
+	      "<th class=\"n\">PSNR dB<br>mean</th><th class=\"n\">PSNR dB<br>worst frame</th><th class=\"n\">SSIM<br>mean</th>"
+	      "<th class=\"n\" title=\"perceived difference when flipping between method and reference, 0 = none\">"
+	      "FLIP<br>mean</th></tr>\n",
 	      o);
 	for (int i = 0; i < r->method_count; i++) {
 		const struct aa_method_summary *s = &sum[i];
@@ -505,6 +520,8 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		put_psnr(o, s->worst_psnr, worst_identical);
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->ssim_mean, 4);
+		fputs("</td><td class=\"n\">", o);
+		put_num(o, flip_mean(&r->methods[i]), 4);
 		fputs("</td></tr>\n", o);
 	}
 	fputs("</table>\n", o);
@@ -583,6 +600,8 @@ static void method_sections(FILE *o, const struct aa_job_result *r)
 		put_psnr(o, mt->psnr, mt->identical);
 		fputs(mt->identical ? ", SSIM " : " dB, SSIM ", o);
 		put_num(o, mt->ssim, 4);
+		fputs(", FLIP ", o);
+		put_num(o, mt->flip_mean, 4);
 		fputs("</p>\n<div class=\"imgs\">\n", o);
 		aa_results_frame_relpath("frames", m->label, ord, rel, sizeof rel);
 		snprintf(caption, sizeof caption, "%s, frame %d", m->label, m->frames[ord].frame);
@@ -592,6 +611,8 @@ static void method_sections(FILE *o, const struct aa_job_result *r)
 		image_figure(o, rel, caption);
 		aa_results_frame_relpath("diff", m->label, ord, rel, sizeof rel);
 		image_figure(o, rel, "|difference| \xc3\x97 4");
+		aa_results_frame_relpath("flip", m->label, ord, rel, sizeof rel);
+		image_figure(o, rel, "FLIP error map (dark: none, bright: most)");
 		fputs("</div></div>\n", o);
 	}
 }

@@ -13,11 +13,17 @@ void aa_results_method_dirname(const char *label, char *out, size_t size);
 /* Image files of a job directory, relative to it:
  *   frames/<dirname>/<NNNN>.png   method output (and frames/reference/<NNNN>.png)
  *   diff/<dirname>/<NNNN>.png     |method - reference| x 4
+ *   flip/<dirname>/<NNNN>.png     the FLIP error map (magma colour map)
  * NNNN is the frame ordinal (0-based) with 4 digits. */
 void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size);
 /* Writes an image under dir at the relative path, creating directories. */
 int aa_results_write_image(const char *dir, const char *relpath, const struct aa_image_rgba8 *img,
 			   struct aa_error *err);
+
+/* Writes the images an event carries into dir: the reference frame (frames/reference/NNNN.png) or a
+ * method's frame, its diff image and its FLIP error map. Other events write nothing. Shared by
+ * `aalab run` and aalabd. */
+int aa_results_write_event_images(const char *dir, const struct aa_event *ev, struct aa_error *err);
 
 json_t *aa_results_to_json(const struct aa_job_result *r);
 /* Writes dir/results.json atomically (temp file, fsync, rename). */

@@ -81,6 +81,15 @@ static double frame_psnr(const struct aa_metrics *m)
 	return isfinite(m->psnr) ? m->psnr : aa_psnr_from_mse(m->mse, 255.0);
 }
 
+/* {"low": x, "mid": y, "high": z}: the MSE carried by each frequency band (metrics/fourier.h). */
+static json_t *fourier_json(struct builder *b, const double band[AA_FOURIER_BANDS])
+{
+	json_t *obj = json_object();
+	for (int i = 0; i < AA_FOURIER_BANDS; i++)
+		put(b, obj, aa_fourier_band_names[i], num(band[i]));
+	return obj;
+}
+
 static json_t *params_json(struct builder *b, const struct aa_method *method, const struct aa_method_params *p)
 {
 	json_t *obj = json_object();
@@ -176,9 +185,12 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "rmsd", num(f->metrics.identical ? 0.0 : f->metrics.rmsd));
 	put(b, obj, "snr", f->metrics.identical ? json_null() : num(f->metrics.snr));
 	put(b, obj, "max_abs", num(f->metrics.max_abs));
+	put(b, obj, "flip", num(f->metrics.flip_mean));
+	put(b, obj, "fourier", fourier_json(b, f->metrics.fourier));
 	put(b, obj, "nonfinite", json_integer(f->nonfinite));
 	put(b, obj, "image", image_path(r, "frames", m->label, ordinal));
 	put(b, obj, "diff", image_path(r, "diff", m->label, ordinal));
+	put(b, obj, "flip_map", image_path(r, "flip", m->label, ordinal));
 	return obj;
 }
 
@@ -225,6 +237,34 @@ static json_t *metrics_json(struct builder *b, const struct aa_method_result *m,
 	put(b, ssim, "per_frame", ssim_frames);
 	put(b, metrics, "ssim", ssim);
 	put(b, metrics, "max_abs", json_pack("{s:o}", "max", num(max_abs)));
+
+	/* FLIP and the Fourier bands: means over the frames that have them. */
+	json_t *flip = json_object(), *flip_frames = json_array();
+	double flip_sum = 0, band_sum[AA_FOURIER_BANDS] = { 0 }, band_mean[AA_FOURIER_BANDS];
+	int flip_n = 0, band_n = 0;
+	for (int i = 0; i < m->frame_count; i++) {
+		const struct aa_metrics *fm = &m->frames[i].metrics;
+		push(b, flip_frames, num(fm->flip_mean));
+		if (isfinite(fm->flip_mean)) {
+			flip_sum += fm->flip_mean;
+			flip_n++;
+		}
+		bool bands_ok = true;
+		for (int k = 0; k < AA_FOURIER_BANDS; k++)
+			bands_ok = bands_ok && isfinite(fm->fourier[k]);
+		for (int k = 0; bands_ok && k < AA_FOURIER_BANDS; k++)
+			band_sum[k] += fm->fourier[k];
+		band_n += bands_ok;
+	}
+	put(b, flip, "mean", num(flip_n ? flip_sum / flip_n : NAN));
+	put(b, flip, "per_frame", flip_frames);
+	put(b, flip, "ppd", num(AA_FLIP_DEFAULT_PPD));
+	put(b, metrics, "flip", flip);
+	for (int k = 0; k < AA_FOURIER_BANDS; k++)
+		band_mean[k] = band_n ? band_sum[k] / band_n : NAN;
+	json_t *fourier = fourier_json(b, band_mean);
+	put(b, fourier, "edges", json_pack("[f, f]", AA_FOURIER_LOW_MID, AA_FOURIER_MID_HIGH));
+	put(b, metrics, "fourier", fourier);
 
 	json_t *curve = json_object(), *thresholds = json_array(), *share = json_array();
 	for (int t = 0; t < AA_THRESHOLD_COUNT; t++) {

@@ -1,7 +1,9 @@
 /* Every method against the exact box-filtered coverage of flat 2D patterns (zero reference error): a
  * half-plane at 0..90 degrees in steps of 5, and a bar 0.5 px wide. Prints each method's mean absolute
  * coverage error; every method must beat `none` on the half-planes, msaa:8 and smaa must beat fxaa on
- * near-horizontal edges, and methods that lose the thin bar are reported, not hidden. */
+ * near-horizontal edges, and methods that lose the thin bar are reported, not hidden. Temporal methods
+ * (those that keep history) are scored on the last of TEMPORAL_FRAMES static frames, since their first
+ * frame is a single jittered sample by design. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,26 +18,31 @@
 
 #define SIZE 64
 #define ANGLES 19
+#define TEMPORAL_FRAMES 8
 
 static struct aa_engine *engine;
-static struct aa_job_spec spec;
+static struct aa_job_spec spec;             /* every method: labels and indices of the results */
+static struct aa_job_spec single, temporal; /* the single-frame and the history-keeping methods */
+static int single_index[AA_MAX_METHODS], temporal_index[AA_MAX_METHODS]; /* into spec */
 static double error_at[AA_MAX_METHODS][ANGLES]; /* mean abs coverage error per method and angle */
 
 struct capture {
 	const double *coverage;
-	double *errors; /* per method */
+	double *errors;      /* per method of spec */
+	const int *index;    /* job method index -> spec index */
+	int last_frame;      /* only this frame is scored */
 };
 
 static int on_event(const struct aa_event *ev, void *user)
 {
 	struct capture *c = user;
-	if (ev->type != AA_EVENT_METHOD_FRAME)
+	if (ev->type != AA_EVENT_METHOD_FRAME || ev->frame_ordinal != c->last_frame)
 		return 0;
 	const struct aa_image_rgbaf *img = ev->linear;
 	double sum = 0;
 	for (int i = 0; i < SIZE * SIZE; i++)
 		sum += fabs(img->pixels[i * 4] - c->coverage[i]);
-	c->errors[ev->method_index] = sum / (SIZE * SIZE);
+	c->errors[c->index[ev->method_index]] = sum / (SIZE * SIZE);
 	return 0;
 }
 
@@ -57,12 +64,18 @@ static void run_pattern(enum aa_pattern2d_kind kind, double angle, double thickn
 	struct aa_error err = {0};
 	float fg[3] = {1, 1, 1}, bg[3] = {0, 0, 0};
 	assert_int_equal(aa_scene_from_polygons(polys, n, SIZE, SIZE, fg, bg, &scene, &err), 0);
-	struct capture c = {coverage, errors};
-	struct aa_job_result *r = NULL;
-	if (aa_job_run_scene(engine, &spec, scene, on_event, &c, &r, &err))
-		fail_msg("job failed: %s", err.message);
-	aa_job_result_free(r);
-	free(r);
+	const struct aa_job_spec *jobs[2] = {&single, &temporal};
+	const int *indices[2] = {single_index, temporal_index};
+	for (int j = 0; j < 2; j++) {
+		if (jobs[j]->method_count == 0)
+			continue;
+		struct capture c = {coverage, errors, indices[j], jobs[j]->frames - 1};
+		struct aa_job_result *r = NULL;
+		if (aa_job_run_scene(engine, jobs[j], scene, on_event, &c, &r, &err))
+			fail_msg("job failed: %s", err.message);
+		aa_job_result_free(r);
+		free(r);
+	}
 	aa_scene_free(scene);
 }
 
@@ -92,6 +105,18 @@ static int setup(void **state)
 		if (method_index(m->label) < 0)
 			spec.method_count++;
 	}
+	single = temporal = spec;
+	single.method_count = temporal.method_count = 0;
+	snprintf(temporal.path, sizeof temporal.path, "static");
+	temporal.frames = TEMPORAL_FRAMES;
+	for (int i = 0; i < spec.method_count; i++) {
+		const struct aa_method *m = spec.methods[i].method;
+		unsigned needs = m->needs_fn ? m->needs_fn(&spec.methods[i].params) : m->needs;
+		struct aa_job_spec *to = (needs & AA_NEED_HISTORY) ? &temporal : &single;
+		int *index = (needs & AA_NEED_HISTORY) ? temporal_index : single_index;
+		index[to->method_count] = i;
+		to->methods[to->method_count++] = spec.methods[i];
+	}
 	return 0;
 }
 
@@ -120,8 +145,8 @@ static void test_half_planes(void **state)
 		for (int m = 0; m < spec.method_count; m++)
 			error_at[m][a] = errors[m];
 	}
-	printf("  mean abs coverage error, half-plane through the centre of a %dx%d image:\n  %-22s", SIZE,
-	       SIZE, "method \\ degrees");
+	printf("  mean abs coverage error, half-plane through the centre of a %dx%d image (temporal methods: "
+	       "frame %d of a static view):\n  %-22s", SIZE, SIZE, TEMPORAL_FRAMES, "method \\ degrees");
 	for (int a = 0; a < ANGLES; a += 2)
 		printf(" %6d", 5 * a);
 	printf("   mean\n");

@@ -1,0 +1,137 @@
+/* aalab get: downloads a job's stored results from aalabd (results.json, report.html, frames), or prints
+ * one of its files. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "client.h"
+
+static const char get_help[] =
+	"usage: aalab get JOB [--out DIR] [--file NAME] [--no-images] [--connect ADDRESS] [--json]\n"
+	"\n"
+	"Downloads a finished job's results.json, report.html and frame images into DIR (default\n"
+	"results/job-JOB). --file NAME (results.json, report.html, frames/METHOD/NNNN.png, ...) writes that\n"
+	"one file to standard output instead. --json prints results.json to standard output.\n";
+
+static json_t *request_file(struct aa_conn *c, const char *job, const char *file, char **data, size_t *size)
+{
+	json_t *msg = json_pack("{ss ss}", "op", "get", "job", job);
+	if (file)
+		json_object_set_new(msg, "file", json_string(file));
+	json_t *r = aa_conn_request(c, msg, data, size);
+	json_decref(msg);
+	return r;
+}
+
+static int mkdir_parents(char *path)
+{
+	for (char *p = path + 1; *p; p++)
+		if (*p == '/') {
+			*p = 0;
+			int rc = mkdir(path, 0777);
+			*p = '/';
+			if (rc && errno != EEXIST)
+				return -1;
+		}
+	return 0;
+}
+
+int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images)
+{
+	json_t *r = request_file(c, job, NULL, NULL, NULL);
+	int status = aa_reply_status(cmd, r);
+	if (status) {
+		json_decref(r);
+		return status;
+	}
+	size_t i;
+	json_t *f;
+	json_array_foreach(json_object_get(r, "files"), i, f) {
+		const char *name = json_string_value(f);
+		bool image = name && (!strncmp(name, "frames/", 7) || !strncmp(name, "diff/", 5) || !strncmp(name, "flip/", 5));
+		if (!name || (image && !images) || strstr(name, "..") || name[0] == '/')
+			continue;
+		char *data;
+		size_t size;
+		json_t *fr = request_file(c, job, name, &data, &size);
+		status = aa_reply_status(cmd, fr);
+		json_decref(fr);
+		if (status)
+			break;
+		char path[2048];
+		snprintf(path, sizeof path, "%s/%s", dir, name);
+		FILE *out = mkdir_parents(path) == 0 ? fopen(path, "wb") : NULL;
+		if (!out || fwrite(data, 1, size, out) != size) {
+			fprintf(stderr, "aalab %s: cannot write %s: %s\n", cmd, path, strerror(errno));
+			status = AA_EXIT_FAILED;
+		}
+		if (out && fclose(out))
+			status = AA_EXIT_FAILED;
+		free(data);
+		if (status)
+			break;
+	}
+	json_decref(r);
+	return status;
+}
+
+void aa_print_results_table(json_t *results, FILE *out)
+{
+	size_t i;
+	json_t *m;
+	fprintf(out, "| method | GPU ms/frame | MB | PSNR dB | SSIM |\n| --- | --- | --- | --- | --- |\n");
+	json_array_foreach(json_object_get(results, "methods"), i, m) {
+		json_t *metrics = json_object_get(m, "metrics");
+		json_t *psnr = json_object_get(json_object_get(metrics, "psnr"), "mean");
+		char psnr_text[32];
+		if (json_is_number(psnr))
+			snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(psnr));
+		else
+			snprintf(psnr_text, sizeof psnr_text, "identical");
+		fprintf(out, "| %s | %.1f | %.1f | %s | %.4f |\n", json_string_value(json_object_get(m, "label")),
+			json_number_value(json_object_get(json_object_get(m, "gpu_ms"), "median")),
+			json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
+			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")));
+	}
+}
+
+int cmd_get(int argc, char **argv)
+{
+	struct aa_service_args a;
+	int rc = aa_service_args("get", get_help, argc, argv, &a);
+	if (rc)
+		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
+	if (!a.job) {
+		fputs(get_help, stderr);
+		return AA_EXIT_USAGE;
+	}
+	struct aa_conn *conn;
+	char err[1200];
+	if (aa_conn_open(a.connect, &conn, err, sizeof err)) {
+		fprintf(stderr, "aalab get: %s\n", err);
+		return AA_EXIT_FAILED;
+	}
+	int status;
+	if (a.file || a.json) {
+		char *data = NULL;
+		size_t size = 0;
+		json_t *r = request_file(conn, a.job, a.file ? a.file : "results.json", &data, &size);
+		status = aa_reply_status("get", r);
+		if (status == AA_EXIT_OK && fwrite(data, 1, size, stdout) != size)
+			status = AA_EXIT_FAILED;
+		free(data);
+		json_decref(r);
+	} else {
+		char dir[1100];
+		snprintf(dir, sizeof dir, "%s", a.out ? a.out : "");
+		if (!a.out)
+			snprintf(dir, sizeof dir, "results/job-%.64s", a.job);
+		status = aa_get_job_files(conn, "get", a.job, dir, !a.no_images);
+		if (status == AA_EXIT_OK)
+			printf("%s/results.json\n%s/report.html\n", dir, dir);
+	}
+	aa_conn_close(conn);
+	return status;
+}

@@ -1,0 +1,154 @@
+/* aalab submit: sends a job (a job file and/or the run flags) to aalabd and prints its id; with --watch
+ * it then streams the job's progress. Also `aalab run` through a running daemon. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "client.h"
+
+static const char submit_help[] =
+	"usage: aalab submit [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N]\n"
+	"                    [--first-frame N] [--size WxH] [--reference-samples N] [--scene-file FILE]\n"
+	"                    [--watch] [--connect ADDRESS] [--json] [--quiet]\n"
+	"\n"
+	"Queues a job on aalabd and prints its id. --scene-file sends your own scene file with the job.\n"
+	"--watch follows the job until it ends. ADDRESS is unix:PATH or tcp:HOST:PORT (default\n"
+	"$AALAB_CONNECT, then $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock).\n";
+
+/* Submits and returns the reply (NULL if the connection failed). */
+static json_t *submit(struct aa_conn *c, json_t *job, const char *scene, size_t scene_size)
+{
+	json_t *msg = json_pack("{ss sO}", "op", "submit", "job", job);
+	if (scene)
+		json_object_set_new(msg, "payload_format", json_string("scene"));
+	int rc = aa_conn_send(c, msg, scene, scene_size);
+	json_decref(msg);
+	return rc ? NULL : aa_conn_read(c, NULL, NULL);
+}
+
+static char *read_file(const char *path, size_t *size)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return NULL;
+	struct stat st;
+	char *data = NULL;
+	if (fstat(fileno(f), &st) == 0 && st.st_size < (1 << 24) && (data = malloc((size_t)st.st_size + 1)) &&
+	    fread(data, 1, (size_t)st.st_size, f) != (size_t)st.st_size) {
+		free(data);
+		data = NULL;
+	}
+	*size = data ? (size_t)st.st_size : 0;
+	fclose(f);
+	return data;
+}
+
+int cmd_submit(int argc, char **argv)
+{
+	enum { OPT_SCENE_FILE = 256, OPT_WATCH, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP };
+	static const struct option opts[] = {
+		AA_JOB_LONG_OPTIONS, {"scene-file", required_argument, 0, OPT_SCENE_FILE},
+		{"watch", no_argument, 0, OPT_WATCH}, {"connect", required_argument, 0, OPT_CONNECT},
+		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
+		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+	};
+	json_t *overrides = json_object();
+	const char *connect = NULL, *scene_file = NULL;
+	bool watch = false, json = false, quiet = !isatty(STDERR_FILENO);
+	int c, idx, status = AA_EXIT_USAGE;
+	char *scene = NULL;
+	size_t scene_size = 0;
+	optind = 1;
+	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
+		switch (c) {
+		case AA_OPT_JOB:
+			if (aa_job_flag("submit", opts[idx].name, optarg, overrides))
+				goto out;
+			break;
+		case OPT_SCENE_FILE: scene_file = optarg; break;
+		case OPT_WATCH: watch = true; break;
+		case OPT_CONNECT: connect = optarg; break;
+		case OPT_JSON: json = true; break;
+		case OPT_QUIET: quiet = true; break;
+		case OPT_HELP: fputs(submit_help, stdout); status = AA_EXIT_OK; goto out;
+		default: fputs(submit_help, stderr); goto out;
+		}
+	}
+	json_t *job = aa_job_build("submit", argc, argv, optind, overrides);
+	if (!job)
+		goto out;
+	if (scene_file && !(scene = read_file(scene_file, &scene_size))) {
+		fprintf(stderr, "aalab submit: scene-file: cannot read %s (at most 16 MB)\n", scene_file);
+		json_decref(job);
+		goto out;
+	}
+	struct aa_conn *conn;
+	char err[1200];
+	if (aa_conn_open(connect, &conn, err, sizeof err)) {
+		fprintf(stderr, "aalab submit: %s\n", err);
+		json_decref(job);
+		status = AA_EXIT_FAILED;
+		goto out;
+	}
+	json_t *r = submit(conn, job, scene, scene_size);
+	json_decref(job);
+	status = aa_reply_status("submit", r);
+	if (status == AA_EXIT_OK) {
+		const char *id = json_string_value(json_object_get(r, "job"));
+		if (json) {
+			json_dumpf(r, stdout, JSON_COMPACT);
+			fputc('\n', stdout);
+		} else {
+			printf("%s\n", id);
+		}
+		fflush(stdout);
+		if (watch)
+			status = aa_watch_job(conn, "submit", id, 0, json, quiet);
+	}
+	json_decref(r);
+	aa_conn_close(conn);
+out:
+	free(scene);
+	json_decref(overrides);
+	return status;
+}
+
+int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, bool images, bool print_json, bool quiet)
+{
+	if (!images)
+		json_object_set_new(job, "keep_frames", json_false());
+	json_t *r = submit(c, job, NULL, 0);
+	int status = aa_reply_status("run", r);
+	if (status) {
+		json_decref(r);
+		return status;
+	}
+	char id[32];
+	snprintf(id, sizeof id, "%s", json_string_value(json_object_get(r, "job")));
+	json_decref(r);
+	/* always said, so that a log shows where the numbers came from */
+	fprintf(stderr, "aalab run: job %s on aalabd (--local runs in this process)\n", id);
+	status = aa_watch_job(c, "run", id, 0, false, quiet || !isatty(STDERR_FILENO)); /* stdout is for the table */
+	if (status == AA_EXIT_OK)
+		status = aa_get_job_files(c, "run", id, dir, images);
+	if (status)
+		return status;
+	char path[1200];
+	snprintf(path, sizeof path, "%s/results.json", dir);
+	json_t *results = json_load_file(path, 0, NULL);
+	if (!results) {
+		fprintf(stderr, "aalab run: cannot read %s\n", path);
+		return AA_EXIT_FAILED;
+	}
+	if (print_json) {
+		json_dumpf(results, stdout, JSON_INDENT(2));
+		fputc('\n', stdout);
+	} else {
+		aa_print_results_table(results, stdout);
+		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
+	}
+	json_decref(results);
+	return AA_EXIT_OK;
+}

@@ -1,0 +1,155 @@
+/* aalab watch: follows a job on aalabd, from the start or after a given event, until it ends. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "client.h"
+
+static const char watch_help[] =
+	"usage: aalab watch JOB [--after SEQ] [--connect ADDRESS] [--json] [--quiet]\n"
+	"\n"
+	"Streams a job's events until it ends: a progress bar on a terminal, one line per frame otherwise,\n"
+	"or the events themselves as JSON lines with --json. --after SEQ resumes after event SEQ.\n"
+	"Exit status: 0 the job is done, 1 it failed or was cancelled, 2 bad arguments or unknown job.\n";
+
+static void print_number(const char *what, json_t *v, const char *unit)
+{
+	if (json_is_number(v))
+		printf(" %s %.4g%s", what, json_number_value(v), unit);
+	else if (v)
+		printf(" %s -", what);
+}
+
+/* One plain line per event, for logs and pipes. */
+static void print_event(json_t *ev)
+{
+	const char *type = json_string_value(json_object_get(ev, "event"));
+	long long seq = json_integer_value(json_object_get(ev, "seq"));
+	if (!strcmp(type, "job_started")) {
+		printf("%lld started on %s: scene %s\n", seq, json_string_value(json_object_get(ev, "device")),
+		       json_string_value(json_object_get(ev, "scene")));
+	} else if (!strcmp(type, "reference_frame") || !strcmp(type, "method_frame")) {
+		printf("%lld frame %lld %-12s", seq, json_integer_value(json_object_get(ev, "frame")),
+		       json_string_value(json_object_get(ev, "method")));
+		print_number("gpu", json_object_get(ev, "gpu_ms"), " ms");
+		json_t *m = json_object_get(ev, "metrics");
+		if (m) {
+			print_number("psnr", json_object_get(m, "psnr"), " dB");
+			print_number("ssim", json_object_get(m, "ssim"), "");
+		}
+		printf(" [%lld/%lld]\n", json_integer_value(json_object_get(ev, "done")),
+		       json_integer_value(json_object_get(ev, "total")));
+	} else if (!strcmp(type, "job_failed")) {
+		json_t *e = json_object_get(ev, "error");
+		printf("%lld failed: %s\n", seq, json_string_value(json_object_get(e, "message")));
+	} else {
+		printf("%lld %s\n", seq, type);
+	}
+}
+
+int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, bool json, bool quiet)
+{
+	json_t *msg = json_pack("{ss ss sI}", "op", "watch", "job", job, "after", (json_int_t)after);
+	json_t *r = aa_conn_request(c, msg, NULL, NULL);
+	json_decref(msg);
+	int status = aa_reply_status(cmd, r);
+	json_decref(r);
+	if (status)
+		return status;
+	bool tty = isatty(STDERR_FILENO) && !quiet;
+	const char *last = "";
+	char last_buf[32] = "";
+	for (;;) {
+		json_t *ev = aa_conn_read(c, NULL, NULL);
+		if (!ev) {
+			fprintf(stderr, "aalab %s: the daemon closed the connection during the watch\n", cmd);
+			return AA_EXIT_FAILED;
+		}
+		const char *type = json_string_value(json_object_get(ev, "event"));
+		if (!type) {
+			json_decref(ev);
+			continue;
+		}
+		if (!strcmp(type, "watch_end")) {
+			json_decref(ev);
+			break;
+		}
+		snprintf(last_buf, sizeof last_buf, "%s", type);
+		last = last_buf;
+		if (json) {
+			json_dumpf(ev, stdout, JSON_COMPACT);
+			fputc('\n', stdout);
+			fflush(stdout);
+		} else if (tty) {
+			json_t *done = json_object_get(ev, "done");
+			if (done)
+				aa_progress_update((int)json_integer_value(done), (int)json_integer_value(json_object_get(ev, "total")),
+						   json_string_value(json_object_get(ev, "method")));
+		} else if (!quiet) {
+			print_event(ev);
+			fflush(stdout);
+		}
+		if (!strcmp(type, "job_failed") && !json) {
+			json_t *e = json_object_get(ev, "error");
+			const char *path = json_string_value(json_object_get(e, "path"));
+			if (tty)
+				aa_progress_finish();
+			fprintf(stderr, "aalab %s: job %s failed: %s%s%s\n", cmd, job, path && *path ? path : "",
+				path && *path ? ": " : "", json_string_value(json_object_get(e, "message")));
+		}
+		json_decref(ev);
+	}
+	if (tty)
+		aa_progress_finish();
+	if (!strcmp(last, "job_finished"))
+		return AA_EXIT_OK;
+	if (!strcmp(last, "job_cancelled") && !json)
+		fprintf(stderr, "aalab %s: job %s was cancelled\n", cmd, job);
+	return AA_EXIT_FAILED;
+}
+
+int cmd_watch(int argc, char **argv)
+{
+	enum { OPT_AFTER = 256, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP };
+	static const struct option opts[] = {
+		{"after", required_argument, 0, OPT_AFTER}, {"connect", required_argument, 0, OPT_CONNECT},
+		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
+		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+	};
+	const char *connect = NULL;
+	long after = 0;
+	bool json = false, quiet = false;
+	int c;
+	optind = 1;
+	while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
+		char *end;
+		switch (c) {
+		case OPT_AFTER:
+			after = strtol(optarg, &end, 10);
+			if (*end || after < 0) {
+				fprintf(stderr, "aalab watch: after: expected an event number, got '%s'\n", optarg);
+				return AA_EXIT_USAGE;
+			}
+			break;
+		case OPT_CONNECT: connect = optarg; break;
+		case OPT_JSON: json = true; break;
+		case OPT_QUIET: quiet = true; break;
+		case OPT_HELP: fputs(watch_help, stdout); return AA_EXIT_OK;
+		default: fputs(watch_help, stderr); return AA_EXIT_USAGE;
+		}
+	}
+	if (optind + 1 != argc) {
+		fputs(watch_help, stderr);
+		return AA_EXIT_USAGE;
+	}
+	struct aa_conn *conn;
+	char err[1200];
+	if (aa_conn_open(connect, &conn, err, sizeof err)) {
+		fprintf(stderr, "aalab watch: %s\n", err);
+		return AA_EXIT_FAILED;
+	}
+	int status = aa_watch_job(conn, "watch", argv[optind], after, json, quiet);
+	aa_conn_close(conn);
+	return status;
+}

@@ -1,0 +1,96 @@
+/* The job flags shared by `aalab run` and `aalab submit` (--scene, --methods, --size, ...): each sets a
+ * field of the job JSON of docs/job-format.md, and a job file given first is overridden by them. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "client.h"
+
+static int parse_int(const char *cmd, const char *field, const char *text, json_int_t *out)
+{
+	char *end;
+	errno = 0;
+	long long v = strtoll(text, &end, 10);
+	if (errno || end == text || *end) {
+		fprintf(stderr, "aalab %s: %s: expected an integer, got '%s'\n", cmd, field, text);
+		return -1;
+	}
+	*out = v;
+	return 0;
+}
+
+int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *job)
+{
+	static const char *const strings[][2] = {{"scene", "scene"}, {"path", "path"}, {"size", "size"}};
+	static const char *const ints[][2] = {{"frames", "frames"}, {"first-frame", "first_frame"}};
+	json_int_t n;
+	for (size_t i = 0; i < sizeof strings / sizeof strings[0]; i++)
+		if (!strcmp(flag, strings[i][0])) {
+			json_object_set_new(job, strings[i][1], json_string(value));
+			return 0;
+		}
+	for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++)
+		if (!strcmp(flag, ints[i][0])) {
+			if (parse_int(cmd, ints[i][1], value, &n))
+				return -1;
+			json_object_set_new(job, ints[i][1], json_integer(n));
+			return 0;
+		}
+	if (!strcmp(flag, "reference-samples")) {
+		if (parse_int(cmd, "reference.samples", value, &n))
+			return -1;
+		json_object_set_new(job, "reference", json_pack("{sI}", "samples", n));
+		return 0;
+	}
+	if (!strcmp(flag, "methods")) {
+		char **list;
+		int count;
+		if (aa_split_methods(value, &list, &count)) {
+			fprintf(stderr, "aalab %s: methods: cannot parse '%s'\n", cmd, value);
+			return -1;
+		}
+		json_t *arr = json_array();
+		for (int i = 0; i < count; i++)
+			json_array_append_new(arr, json_string(list[i]));
+		aa_free_strings(list, count);
+		json_object_set_new(job, "methods", arr);
+		return 0;
+	}
+	return 1;
+}
+
+json_t *aa_job_load_file(const char *cmd, const char *path)
+{
+	json_error_t jerr;
+	json_t *job = json_load_file(path, JSON_REJECT_DUPLICATES, &jerr);
+	if (!job) {
+		fprintf(stderr, "aalab %s: %s:%d:%d: %s\n", cmd, path, jerr.line, jerr.column, jerr.text);
+		return NULL;
+	}
+	if (!json_is_object(job)) {
+		fprintf(stderr, "aalab %s: %s: a job file holds a JSON object\n", cmd, path);
+		json_decref(job);
+		return NULL;
+	}
+	return job;
+}
+
+json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *overrides)
+{
+	json_t *job;
+	if (first < argc) {
+		if (first + 1 < argc) {
+			fprintf(stderr, "aalab %s: one job file at most, got '%s' and '%s'\n", cmd, argv[first],
+				argv[first + 1]);
+			return NULL;
+		}
+		job = aa_job_load_file(cmd, argv[first]);
+		if (!job)
+			return NULL;
+	} else {
+		job = json_object();
+	}
+	json_object_update(job, overrides);
+	return job;
+}

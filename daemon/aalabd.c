@@ -1,0 +1,364 @@
+/* aalabd: the aalab daemon. Sets up the listeners, the job store and the GPU worker, then runs the event
+ * loop until SIGTERM or SIGINT; SIGHUP reloads the configuration file. See aalabd(8). */
+#include <arpa/inet.h>
+#include <errno.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "daemon.h"
+#include "jobs.h"
+
+static volatile sig_atomic_t got_term, got_hup;
+static struct loop *signal_loop;
+
+static void on_signal(int sig)
+{
+	if (sig == SIGHUP)
+		got_hup = 1;
+	else
+		got_term++;
+	loop_wake(signal_loop);
+}
+
+static const char usage[] =
+	"usage: aalabd [--socket PATH] [--state-dir DIR] [--tcp HOST:PORT --token-file FILE] [--http HOST:PORT]\n"
+	"              [--config FILE] [--web-dir DIR] [--device SEL] [--OPTION VALUE ...] [--verbose] [--check]\n"
+	"\n"
+	"Serves aalab jobs over a Unix socket (default $XDG_RUNTIME_DIR/aalabd.sock), optionally TCP with a\n"
+	"bearer token and HTTP for dashboards. Every key of the configuration file is also an option\n"
+	"(--max-connections 64, --retention-jobs 100, ...). --check only checks the configuration.\n"
+	"See aalabd(8) and docs/protocol.md.\n";
+
+void daemon_log(struct daemon *d, int level, const char *fmt, ...)
+{
+	if (level > d->cfg.verbose)
+		return;
+	va_list ap;
+	va_start(ap, fmt);
+	fputs("aalabd: ", stderr);
+	vfprintf(stderr, fmt, ap);
+	fputc('\n', stderr);
+	va_end(ap);
+}
+
+/* Builds the configuration: defaults, then the file, then the command line (which wins). */
+static int read_config(int argc, char **argv, struct config *cfg, char *err, size_t err_size)
+{
+	config_defaults(cfg);
+	const char *file = NULL;
+	for (int i = 1; i + 1 < argc; i++)
+		if (!strcmp(argv[i], "--config"))
+			file = argv[i + 1];
+	if (file) {
+		snprintf(cfg->config_file, sizeof cfg->config_file, "%s", file);
+		if (config_load(cfg, file, err, err_size))
+			return -1;
+	}
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		if (!strcmp(a, "--verbose") || !strcmp(a, "-v")) {
+			cfg->verbose++;
+			continue;
+		}
+		if (!strcmp(a, "--check"))
+			continue;
+		if (strncmp(a, "--", 2) || i + 1 >= argc) {
+			snprintf(err, err_size, "unexpected argument '%s' (options take a value: --socket PATH)", a);
+			return -1;
+		}
+		if (strcmp(a, "--config") && config_set(cfg, a + 2, argv[i + 1], err, err_size))
+			return -1;
+		i++;
+	}
+	return 0;
+}
+
+static int read_token(struct daemon *d, char *err, size_t err_size)
+{
+	d->token[0] = 0;
+	if (!d->cfg.token_file[0])
+		return 0;
+	struct stat st;
+	FILE *f = fopen(d->cfg.token_file, "r");
+	if (!f || fstat(fileno(f), &st) < 0) {
+		snprintf(err, err_size, "token-file: cannot read %s: %s", d->cfg.token_file, strerror(errno));
+		if (f)
+			fclose(f);
+		return -1;
+	}
+	if (st.st_mode & 077)
+		fprintf(stderr, "aalabd: warning: token file %s is readable by others (chmod 600)\n", d->cfg.token_file);
+	if (!fgets(d->token, sizeof d->token, f))
+		d->token[0] = 0;
+	fclose(f);
+	d->token[strcspn(d->token, "\r\n")] = 0;
+	if (strlen(d->token) < 16) {
+		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters", d->cfg.token_file);
+		return -1;
+	}
+	return 0;
+}
+
+static int add_listener(struct daemon *d, int fd, enum conn_kind kind, bool tcp, const char *name)
+{
+	struct listener *l = &d->listeners[d->listener_count++];
+	*l = (struct listener){.d = d, .fd = fd, .kind = kind, .tcp = tcp};
+	snprintf(l->name, sizeof l->name, "%s", name);
+	return 0;
+}
+
+static int open_listeners(struct daemon *d, int argc, char **argv, char *err, size_t err_size)
+{
+	int n = listen_systemd(d, err, err_size);
+	if (n < 0)
+		return -1;
+	for (int i = 0; i < d->listener_count; i++)
+		d->listeners[i].d = d;
+	bool socket_flag = false;
+	for (int i = 1; i < argc; i++)
+		socket_flag |= !strcmp(argv[i], "--socket");
+	/* with socket activation, only the sockets systemd passed (unless --socket is given too) */
+	if (n == 0 || socket_flag) {
+		int fd = listen_unix(d->cfg.socket_path, err, err_size);
+		if (fd < 0)
+			return -1;
+		add_listener(d, fd, CONN_PROTOCOL, false, d->cfg.socket_path);
+	}
+	if (d->cfg.tcp[0]) {
+		if (!d->token[0]) {
+			snprintf(err, err_size, "tcp: a token file is required (--token-file)");
+			return -1;
+		}
+		int fd = listen_tcp(d->cfg.tcp, err, err_size);
+		if (fd < 0)
+			return -1;
+		add_listener(d, fd, CONN_PROTOCOL, true, d->cfg.tcp);
+	}
+	if (d->cfg.http[0]) {
+		int fd = listen_tcp(d->cfg.http, err, err_size);
+		if (fd < 0)
+			return -1;
+		/* a dashboard on loopback needs no token; elsewhere it needs the same bearer token */
+		add_listener(d, fd, CONN_HTTP, !address_is_loopback(d->cfg.http), d->cfg.http);
+	}
+	return 0;
+}
+
+static void log_listeners(struct daemon *d)
+{
+	for (int i = 0; i < d->listener_count; i++) {
+		struct listener *l = &d->listeners[i];
+		struct sockaddr_storage ss;
+		socklen_t len = sizeof ss;
+		char where[320];
+		snprintf(where, sizeof where, "%s", l->name);
+		if (getsockname(l->fd, (struct sockaddr *)&ss, &len) == 0 && ss.ss_family == AF_INET) {
+			struct sockaddr_in *in = (struct sockaddr_in *)&ss;
+			char host[32];
+			inet_ntop(AF_INET, &in->sin_addr, host, sizeof host);
+			snprintf(where, sizeof where, "%s:%u", host, ntohs(in->sin_port));
+		}
+		/* tests read the port of "--http 127.0.0.1:0" from this line */
+		fprintf(stderr, "aalabd: listening (%s) on %s\n", l->kind == CONN_HTTP ? "http" : l->tcp ? "tcp" : "unix",
+			where);
+	}
+}
+
+static void reload(struct daemon *d, int argc, char **argv)
+{
+	sd_notifyf("RELOADING=1");
+	struct config fresh;
+	char err[1024];
+	if (read_config(argc, argv, &fresh, err, sizeof err)) {
+		fprintf(stderr, "aalabd: reload failed, keeping the old configuration: %s\n", err);
+	} else {
+		config_apply_reload(&d->cfg, &fresh);
+		if (read_token(d, err, sizeof err))
+			fprintf(stderr, "aalabd: reload: %s\n", err);
+		pthread_mutex_lock(&d->store->lock);
+		d->store->retention_jobs = d->cfg.retention_jobs;
+		d->store->retention_bytes = d->cfg.retention_bytes;
+		store_apply_retention(d->store);
+		pthread_mutex_unlock(&d->store->lock);
+		scene_cache_set_budget(d->store->scenes, d->cfg.scene_cache_bytes);
+		fprintf(stderr, "aalabd: configuration reloaded\n");
+	}
+	sd_notifyf("READY=1");
+}
+
+struct runtime {
+	struct daemon *d;
+	int argc;
+	char **argv;
+	int watchdog_ms;
+	double last_watchdog;
+};
+
+static void start_drain(struct daemon *d)
+{
+	d->draining = true;
+	d->drain_started_ms = loop_now_ms();
+	sd_notifyf("STOPPING=1\nSTATUS=draining: finishing the running job");
+	fprintf(stderr, "aalabd: stopping: no new connections; the running job may take up to %d s\n",
+		d->cfg.drain_timeout_s);
+	for (int i = 0; i < d->listener_count; i++) {
+		loop_unwatch(d->loop, d->listeners[i].fd);
+		close(d->listeners[i].fd);
+		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)
+			unlink(d->listeners[i].name);
+	}
+	d->listener_count = 0;
+	worker_request_stop(d->store, d->cfg.drain_timeout_s == 0);
+}
+
+static void check_drained(struct daemon *d)
+{
+	pthread_mutex_lock(&d->store->lock);
+	bool exited = d->store->worker_exited;
+	pthread_mutex_unlock(&d->store->lock);
+	if (!exited && loop_now_ms() - d->drain_started_ms > d->cfg.drain_timeout_s * 1000.0)
+		worker_request_stop(d->store, true); /* the running job stays queued for the next start */
+	bool flushed = true;
+	for (struct conn *c = d->conns; c; c = c->next)
+		flushed &= c->closed || conn_pending(c) == 0;
+	/* once the worker is done, replies still queued get a short grace period */
+	if (exited && (flushed || loop_now_ms() - d->drain_started_ms > (d->cfg.drain_timeout_s + 2) * 1000.0))
+		loop_stop(d->loop);
+}
+
+static void on_wake(struct loop *loop, void *data)
+{
+	(void)loop;
+	struct runtime *rt = data;
+	struct daemon *d = rt->d;
+	if (got_term && !d->draining)
+		start_drain(d);
+	if (got_term > 1) /* a second signal: stop now, the running job re-runs at the next start */
+		worker_request_stop(d->store, true);
+	if (got_hup) {
+		got_hup = 0;
+		reload(d, rt->argc, rt->argv);
+	}
+	conns_pump_watches(d);
+	if (d->draining)
+		check_drained(d);
+}
+
+static void on_tick(struct loop *loop, void *data)
+{
+	(void)loop;
+	struct runtime *rt = data;
+	conns_tick(rt->d);
+	if (rt->watchdog_ms && loop_now_ms() - rt->last_watchdog >= rt->watchdog_ms) {
+		sd_notifyf("WATCHDOG=1");
+		rt->last_watchdog = loop_now_ms();
+	}
+	if (rt->d->draining)
+		check_drained(rt->d);
+}
+
+int main(int argc, char **argv)
+{
+	for (int i = 1; i < argc; i++)
+		if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+			fputs(usage, stdout);
+			return 0;
+		} else if (!strcmp(argv[i], "--version")) {
+			printf("aalabd %s\n", PACKAGE_VERSION);
+			return 0;
+		}
+	static struct daemon daemon;
+	struct daemon *d = &daemon;
+	char err[1200];
+	if (read_config(argc, argv, &d->cfg, err, sizeof err) || read_token(d, err, sizeof err)) {
+		fprintf(stderr, "aalabd: %s\n%s", err, usage);
+		return 2;
+	}
+	for (int i = 1; i < argc; i++)
+		if (!strcmp(argv[i], "--check")) {
+			printf("aalabd: configuration ok\n");
+			return 0;
+		}
+	if (!d->cfg.web_dir[0]) {
+		struct stat st;
+		const char *src = AA_SOURCE_WEB_DIR "/index.html";
+		snprintf(d->cfg.web_dir, sizeof d->cfg.web_dir, "%s",
+			 stat(src, &st) == 0 ? AA_SOURCE_WEB_DIR : AA_INSTALLED_WEB_DIR);
+	}
+	signal(SIGPIPE, SIG_IGN);
+	d->loop = loop_create();
+	signal_loop = d->loop;
+	d->started_ms = loop_now_ms();
+	struct store *store = calloc(1, sizeof *store);
+	if (!d->loop || !store) {
+		fprintf(stderr, "aalabd: out of memory\n");
+		return 1;
+	}
+	d->store = store;
+	store->loop = d->loop;
+	store->retention_jobs = d->cfg.retention_jobs;
+	store->retention_bytes = d->cfg.retention_bytes;
+	int status = 1;
+	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
+		fprintf(stderr, "aalabd: %s\n", err);
+		free(store);
+		loop_destroy(d->loop);
+		return 1;
+	}
+	store->scenes = scene_cache_create(d->cfg.scene_cache_bytes);
+	struct aa_error aerr = {0};
+	struct aa_engine_options eo = {.device = d->cfg.device[0] ? d->cfg.device : NULL};
+	if (open_listeners(d, argc, argv, err, sizeof err)) {
+		fprintf(stderr, "aalabd: %s\n", err);
+		goto out;
+	}
+	if (aa_engine_create(&eo, &store->engine, &aerr)) {
+		fprintf(stderr, "aalabd: %s\n", aerr.message);
+		goto out;
+	}
+	if (worker_start(store)) {
+		fprintf(stderr, "aalabd: cannot start the GPU worker thread\n");
+		goto out;
+	}
+	struct runtime rt = {.d = d, .argc = argc, .argv = argv, .watchdog_ms = sd_watchdog_interval_ms()};
+	for (int i = 0; i < d->listener_count; i++)
+		loop_watch(d->loop, d->listeners[i].fd, LOOP_READ, conn_accept, &d->listeners[i]);
+	loop_on_wake(d->loop, on_wake, &rt);
+	loop_every(d->loop, rt.watchdog_ms && rt.watchdog_ms < 1000 ? rt.watchdog_ms : 1000, on_tick, &rt);
+	struct sigaction sa = {.sa_handler = on_signal};
+	sigemptyset(&sa.sa_mask);
+	sigaction(SIGTERM, &sa, NULL);
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGHUP, &sa, NULL);
+	log_listeners(d);
+	pthread_mutex_lock(&store->lock);
+	int queued = store_count_state(store, JOB_QUEUED);
+	pthread_mutex_unlock(&store->lock);
+	fprintf(stderr, "aalabd: ready (device %s, %d jobs queued)\n", aa_engine_device_name(store->engine), queued);
+	sd_notifyf("READY=1\nSTATUS=serving; %d jobs queued\nMAINPID=%ld", queued, (long)getpid());
+	status = loop_run(d->loop) == 0 ? 0 : 1;
+	worker_request_stop(store, true);
+	worker_join(store);
+	fprintf(stderr, "aalabd: stopped\n");
+out:
+	for (struct conn *c = d->conns; c; c = c->next)
+		conn_close(c);
+	conns_sweep(d);
+	for (int i = 0; i < d->listener_count; i++) {
+		close(d->listeners[i].fd);
+		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)
+			unlink(d->listeners[i].name);
+	}
+	aa_engine_destroy(store->engine);
+	scene_cache_destroy(store->scenes);
+	store_close(store);
+	free(store);
+	loop_destroy(d->loop);
+	return status;
+}

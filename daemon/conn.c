@@ -1,0 +1,402 @@
+/* Client connections: accepting, reading into a bounded input buffer, splitting it into JSON lines (and
+ * announced binary payloads), queueing output, and the timeouts that drop idle, stalled or slow clients.
+ * HTTP connections share the buffers and hand their input to http.c. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <unistd.h>
+
+#include "daemon.h"
+#include "jobs.h"
+
+static void conn_io(struct loop *loop, int fd, int events, void *data);
+
+size_t conn_pending(const struct conn *c)
+{
+	return c->out_len - c->out_head;
+}
+
+static void peer_name(struct conn *c, bool tcp)
+{
+	if (!tcp) {
+		struct ucred cred;
+		socklen_t len = sizeof cred;
+		if (getsockopt(c->fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0)
+			snprintf(c->peer, sizeof c->peer, "uid:%u", (unsigned)cred.uid);
+		else
+			snprintf(c->peer, sizeof c->peer, "unix");
+		return;
+	}
+	struct sockaddr_storage ss;
+	socklen_t len = sizeof ss;
+	char host[INET6_ADDRSTRLEN] = "?";
+	if (getpeername(c->fd, (struct sockaddr *)&ss, &len) == 0) {
+		if (ss.ss_family == AF_INET)
+			inet_ntop(AF_INET, &((struct sockaddr_in *)&ss)->sin_addr, host, sizeof host);
+		else if (ss.ss_family == AF_INET6)
+			inet_ntop(AF_INET6, &((struct sockaddr_in6 *)&ss)->sin6_addr, host, sizeof host);
+	}
+	snprintf(c->peer, sizeof c->peer, "tcp:%s", host);
+}
+
+void conn_accept(struct loop *loop, int fd, int events, void *data)
+{
+	(void)events;
+	struct listener *l = data;
+	struct daemon *d = l->d;
+	for (;;) {
+		int cfd = accept4(fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+		if (cfd < 0)
+			return; /* EAGAIN, or a transient error (EMFILE): the next poll tries again */
+		if (d->conn_count >= d->cfg.max_connections) {
+			static const char proto[] = "{\"ok\":false,\"error\":{\"code\":\"limit\",\"message\":\"too many "
+						    "connections; try again later\",\"path\":\"\"}}\n";
+			static const char http[] = "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\n"
+						   "Connection: close\r\n\r\n";
+			ssize_t n = l->kind == CONN_HTTP ? write(cfd, http, sizeof http - 1) : write(cfd, proto, sizeof proto - 1);
+			(void)n;
+			close(cfd);
+			continue;
+		}
+		struct conn *c = calloc(1, sizeof *c);
+		if (!c) {
+			close(cfd);
+			continue;
+		}
+		c->d = d;
+		c->fd = cfd;
+		c->kind = l->kind;
+		c->via_tcp = l->tcp;
+		c->authed = !l->tcp || !d->token[0];
+		c->last_input_ms = c->last_output_ms = loop_now_ms();
+		peer_name(c, l->tcp);
+		c->next = d->conns;
+		d->conns = c;
+		d->conn_count++;
+		d->stats.connections_total++;
+		loop_watch(loop, cfd, LOOP_READ, conn_io, c);
+	}
+}
+
+void conn_close(struct conn *c)
+{
+	if (c->closed)
+		return;
+	c->closed = true;
+	loop_unwatch(c->d->loop, c->fd);
+	close(c->fd);
+	c->fd = -1;
+	if (c->watch_job) {
+		pthread_mutex_lock(&c->d->store->lock);
+		c->watch_job->watchers--;
+		pthread_mutex_unlock(&c->d->store->lock);
+		c->watch_job = NULL;
+	}
+}
+
+void conns_sweep(struct daemon *d)
+{
+	for (struct conn **p = &d->conns; *p;) {
+		struct conn *c = *p;
+		if (!c->closed) {
+			p = &c->next;
+			continue;
+		}
+		*p = c->next;
+		d->conn_count--;
+		json_decref(c->pending);
+		json_decref(c->watch_tag);
+		free(c->in);
+		free(c->out);
+		free(c);
+	}
+}
+
+/* Reads only while the client can take replies; never after its end of input (poll would report it
+ * again and again). */
+static void update_interest(struct conn *c)
+{
+	if (c->closed)
+		return;
+	int mask = conn_pending(c) ? LOOP_WRITE : 0;
+	if (!c->eof && !c->close_after_flush && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
+		mask |= LOOP_READ;
+	loop_watch(c->d->loop, c->fd, mask, conn_io, c);
+}
+
+void conn_finish_watch(struct conn *c)
+{
+	if (!c->closed && c->close_after_flush && !conn_pending(c))
+		conn_close(c);
+}
+
+static void flush(struct conn *c)
+{
+	while (!c->closed && conn_pending(c)) {
+		ssize_t n = send(c->fd, c->out + c->out_head, conn_pending(c), MSG_NOSIGNAL);
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+			break;
+		if (n <= 0) {
+			conn_close(c);
+			return;
+		}
+		c->out_head += (size_t)n;
+		c->last_output_ms = loop_now_ms();
+	}
+	if (c->out_head == c->out_len)
+		c->out_head = c->out_len = 0;
+	if (!conn_pending(c) && c->close_after_flush && !c->watch_job) {
+		conn_close(c);
+		return;
+	}
+	update_interest(c);
+}
+
+void conn_send(struct conn *c, const void *data, size_t size)
+{
+	if (c->closed)
+		return;
+	/* Watch streams stop at client_buffer_bytes (stream.c) and reading stops there too (update_interest),
+	 * so only a client that keeps asking without reading anything gets this far. */
+	if (conn_pending(c) > 0 && conn_pending(c) + size > 4 * c->d->cfg.client_buffer_bytes + (1u << 20)) {
+		fprintf(stderr, "aalabd: dropping %s: it does not read its replies\n", c->peer);
+		conn_close(c);
+		return;
+	}
+	if (!conn_pending(c))
+		c->last_output_ms = loop_now_ms(); /* the slow-client clock starts when output starts waiting */
+	if (c->out_head > 0 && c->out_head >= c->out_cap / 2) {
+		memmove(c->out, c->out + c->out_head, conn_pending(c));
+		c->out_len -= c->out_head;
+		c->out_head = 0;
+	}
+	if (c->out_len + size > c->out_cap) {
+		size_t cap = c->out_cap ? c->out_cap : 4096;
+		while (cap < c->out_len + size)
+			cap *= 2;
+		char *out = realloc(c->out, cap);
+		if (!out) {
+			conn_close(c);
+			return;
+		}
+		c->out = out;
+		c->out_cap = cap;
+	}
+	memcpy(c->out + c->out_len, data, size);
+	c->out_len += size;
+	flush(c);
+}
+
+void conn_send_json(struct conn *c, json_t *msg)
+{
+	char *text = json_dumps(msg, JSON_COMPACT);
+	json_decref(msg);
+	if (!text)
+		return;
+	size_t n = strlen(text);
+	text[n] = '\n'; /* replaces the terminator: the line is sent with its newline in one piece */
+	conn_send(c, text, n + 1);
+	free(text);
+}
+
+static void consume(struct conn *c, size_t n)
+{
+	memmove(c->in, c->in + n, c->in_len - n);
+	c->in_len -= n;
+}
+
+/* Splits the input into requests: a JSON line, then the payload it announced, if any. */
+static void protocol_input(struct conn *c)
+{
+	struct daemon *d = c->d;
+	while (!c->closed && c->in_len > 0) {
+		if (c->discard) {
+			size_t n = c->discard < c->in_len ? c->discard : c->in_len;
+			consume(c, n);
+			c->discard -= n;
+			continue;
+		}
+		if (c->pending) {
+			if (c->in_len < c->payload_expected)
+				return;
+			json_t *msg = c->pending;
+			size_t size = c->payload_expected;
+			c->pending = NULL;
+			c->payload_expected = 0;
+			protocol_request(c, msg, c->in, size);
+			consume(c, size);
+			continue;
+		}
+		char *nl = memchr(c->in, '\n', c->in_len);
+		if (!nl) {
+			if (c->in_len > d->cfg.max_request_bytes) {
+				if (!c->discard_line)
+					protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes "
+						       "(max-request-bytes)", d->cfg.max_request_bytes);
+				c->discard_line = true;
+				c->in_len = 0;
+			}
+			return;
+		}
+		size_t len = (size_t)(nl - c->in);
+		if (c->discard_line) { /* the tail of a refused line */
+			c->discard_line = false;
+			consume(c, len + 1);
+			continue;
+		}
+		if (len > d->cfg.max_request_bytes) {
+			protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes (max-request-bytes)",
+				       d->cfg.max_request_bytes);
+			consume(c, len + 1);
+			continue;
+		}
+		if (len > 0 && c->in[len - 1] == '\r')
+			len--;
+		if (len == 0) {
+			consume(c, (size_t)(nl - c->in) + 1);
+			continue;
+		}
+		json_error_t jerr;
+		json_t *msg = json_loadb(c->in, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY, &jerr);
+		consume(c, (size_t)(nl - c->in) + 1);
+		d->stats.requests_total++;
+		if (!msg) {
+			protocol_error(c, NULL, "bad_json", "", "not JSON: %s (column %d)", jerr.text, jerr.column);
+			continue;
+		}
+		long payload = protocol_payload_size(c, msg);
+		if (payload < 0) {
+			json_decref(msg);
+			continue;
+		}
+		if (payload > 0) {
+			c->pending = msg;
+			c->payload_expected = (size_t)payload;
+			continue;
+		}
+		protocol_request(c, msg, NULL, 0);
+	}
+}
+
+static void conn_read(struct conn *c)
+{
+	struct daemon *d = c->d;
+	for (;;) {
+		if (c->in_cap - c->in_len < 16384) {
+			size_t cap = c->in_cap ? c->in_cap * 2 : 16384;
+			/* the buffer never holds more than one request line (or payload) plus one read */
+			size_t limit = d->cfg.max_request_bytes * 2 + 65536;
+			if (cap > limit)
+				cap = limit;
+			if (cap > c->in_cap) {
+				char *in = realloc(c->in, cap);
+				if (!in) {
+					conn_close(c);
+					return;
+				}
+				c->in = in;
+				c->in_cap = cap;
+			}
+		}
+		size_t room = c->in_cap - c->in_len;
+		if (room == 0)
+			break;
+		ssize_t n = recv(c->fd, c->in + c->in_len, room, 0);
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+			break;
+		if (n <= 0) {
+			/* end of input: a request cut short gets its error; the connection closes once its replies
+			 * (and a running watch) are sent */
+			if (c->pending && c->kind == CONN_PROTOCOL)
+				protocol_error(c, NULL, "truncated", "payload", "the connection ended %zu bytes into a "
+					       "payload of %zu", c->in_len, c->payload_expected);
+			else if (c->in_len > 0 && !c->discard && !c->discard_line && c->kind == CONN_PROTOCOL)
+				protocol_error(c, NULL, "truncated", "", "the connection ended inside a request line "
+					       "(every request ends with a newline)");
+			c->in_len = 0;
+			c->eof = true;
+			c->close_after_flush = true;
+			if (!conn_pending(c) && !c->watch_job)
+				conn_close(c);
+			else
+				update_interest(c);
+			return;
+		}
+		c->in_len += (size_t)n;
+		c->last_input_ms = loop_now_ms();
+		if (c->kind == CONN_HTTP)
+			http_input(c);
+		else
+			protocol_input(c);
+		if (c->closed || c->close_after_flush)
+			return;
+		/* a client that pipelines requests without reading replies is paused, not buffered without end */
+		if (conn_pending(c) > d->cfg.client_buffer_bytes)
+			break;
+	}
+	if ((c->in_len > 0 || c->pending) && c->partial_since_ms == 0)
+		c->partial_since_ms = loop_now_ms();
+	else if (c->in_len == 0 && !c->pending)
+		c->partial_since_ms = 0;
+}
+
+static void conn_io(struct loop *loop, int fd, int events, void *data)
+{
+	(void)loop;
+	(void)fd;
+	struct conn *c = data;
+	if (events & LOOP_WRITE) {
+		flush(c);
+		if (!c->closed && c->watch_job && conn_pending(c) < c->d->cfg.client_buffer_bytes / 2)
+			protocol_pump_watch(c);
+	}
+	if (!c->closed && (events & LOOP_READ) && !c->close_after_flush && !c->eof)
+		conn_read(c);
+	update_interest(c);
+	conns_sweep(c->d);
+}
+
+void conns_pump_watches(struct daemon *d)
+{
+	for (struct conn *c = d->conns; c; c = c->next)
+		if (!c->closed && c->watch_job)
+			protocol_pump_watch(c);
+	conns_sweep(d);
+}
+
+void conns_tick(struct daemon *d)
+{
+	double now = loop_now_ms();
+	const struct config *cfg = &d->cfg;
+	for (struct conn *c = d->conns; c; c = c->next) {
+		if (c->closed)
+			continue;
+		if (conn_pending(c) && now - c->last_output_ms > cfg->slow_client_timeout_s * 1000.0) {
+			fprintf(stderr, "aalabd: dropping %s: nothing read for %d s (slow-client-timeout)\n", c->peer,
+				cfg->slow_client_timeout_s);
+			conn_close(c);
+		} else if ((c->in_len > 0 || c->pending) && !c->close_after_flush && c->partial_since_ms > 0 &&
+			   now - c->partial_since_ms > cfg->request_timeout_s * 1000.0) {
+			if (c->kind == CONN_PROTOCOL)
+				protocol_error(c, NULL, "timeout", c->pending ? "payload" : "",
+					       "request not completed within %d s (request-timeout)", cfg->request_timeout_s);
+			c->in_len = 0;
+			c->close_after_flush = true;
+			if (!conn_pending(c))
+				conn_close(c);
+			else
+				update_interest(c);
+		} else if (!c->watch_job && !conn_pending(c) && now - c->last_input_ms > cfg->idle_timeout_s * 1000.0) {
+			conn_close(c);
+		}
+	}
+	conns_sweep(d);
+}

@@ -1,0 +1,154 @@
+/* aalabd's shared state: the configuration, the listeners, the client connections and the job store.
+ * The event loop thread owns connections and listeners; the job store is shared with the GPU worker
+ * under store.lock (jobs.h). */
+#ifndef AALABD_DAEMON_H
+#define AALABD_DAEMON_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <jansson.h>
+
+#include "loop.h"
+
+#define AALABD_PROTOCOL_VERSION 1
+
+struct config {
+	char socket_path[108];
+	char state_dir[1024];
+	char tcp[300];            /* HOST:PORT or "" */
+	char token_file[1024];
+	char http[300];
+	char web_dir[1024];
+	char config_file[1024];
+	char device[128];
+	size_t max_request_bytes;   /* one JSON line, and one announced payload */
+	int max_connections;
+	int max_jobs_per_client;    /* queued + running */
+	int max_queued_jobs;
+	double max_job_budget;      /* width x height x frames x (reference samples + methods) */
+	int idle_timeout_s;         /* no request and no watch */
+	int slow_client_timeout_s;  /* output pending and none of it written */
+	int request_timeout_s;      /* a started line or payload not completed */
+	size_t client_buffer_bytes; /* output kept per client; beyond it frames are dropped from the stream */
+	int retention_jobs;         /* finished jobs kept */
+	uint64_t retention_bytes;   /* bytes of finished jobs kept */
+	uint64_t scene_cache_bytes;
+	int drain_timeout_s;        /* SIGTERM: how long the running job may take to finish */
+	int verbose;
+};
+
+void config_defaults(struct config *c);
+/* Reads "key = value" lines; errors name the file, the line and the key. */
+int config_load(struct config *c, const char *path, char *err, size_t err_size);
+/* Applies the reloadable settings (limits, timeouts, retention, cache budget) of `from` to `to`. */
+void config_apply_reload(struct config *to, const struct config *from);
+int config_set(struct config *c, const char *name, const char *value, char *err, size_t err_size);
+
+enum conn_kind { CONN_PROTOCOL, CONN_HTTP };
+
+struct job;
+
+struct conn {
+	struct daemon *d;
+	int fd;
+	enum conn_kind kind;
+	bool via_tcp;             /* the bearer token must be shown in hello */
+	bool authed;
+	char peer[64];            /* "uid:1000" or "tcp:127.0.0.1" (jobs-per-client) */
+	char *in;                 /* bytes read and not consumed */
+	size_t in_len, in_cap;
+	size_t payload_expected;  /* bytes of an announced payload still to come */
+	size_t discard;           /* bytes of a refused payload still to skip */
+	bool discard_line;        /* skipping the rest of an over-long line */
+	json_t *pending;          /* the request that announced the payload */
+	char *out;                /* bytes queued to send: out[out_head .. out_len) */
+	size_t out_head, out_len, out_cap;
+	double last_input_ms, last_output_ms, partial_since_ms;
+	bool close_after_flush, closed, eof;
+	/* the one watch this connection may run */
+	struct job *watch_job;
+	unsigned long watch_next_seq;
+	json_t *watch_tag;
+	int watch_frames;         /* FRAMES_NONE / FRAMES_PNG / FRAMES_RGBA8 */
+	unsigned long frames_dropped;
+	int http_requests;
+	struct conn *next;
+};
+
+struct listener {
+	struct daemon *d;
+	int fd;
+	enum conn_kind kind;
+	bool tcp;
+	bool from_systemd;
+	char name[300];
+};
+
+struct stats {
+	uint64_t connections_total, requests_total, errors_total, http_requests_total;
+	uint64_t frames_dropped_total;
+};
+
+struct daemon {
+	struct config cfg;
+	struct loop *loop;
+	struct store *store;
+	struct listener listeners[8];
+	int listener_count;
+	struct conn *conns;
+	int conn_count;
+	char token[256];
+	bool draining;
+	double drain_started_ms;
+	double started_ms;
+	struct stats stats;
+};
+
+/* conn.c */
+void conn_accept(struct loop *loop, int fd, int events, void *data);
+void conn_send(struct conn *c, const void *data, size_t size);
+void conn_send_json(struct conn *c, json_t *msg); /* steals msg */
+void conn_close(struct conn *c);
+void conns_sweep(struct daemon *d); /* frees closed connections */
+void conn_finish_watch(struct conn *c); /* closes a half-closed connection once its watch ended */
+void conns_tick(struct daemon *d);
+void conns_pump_watches(struct daemon *d);
+size_t conn_pending(const struct conn *c);
+
+/* protocol.c */
+void protocol_request(struct conn *c, json_t *msg, const char *payload, size_t payload_size);
+/* Checks a request line's announced payload; returns its size or -1 after answering with an error. */
+long protocol_payload_size(struct conn *c, json_t *msg);
+void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
+	__attribute__((format(printf, 5, 6)));
+void protocol_pump_watch(struct conn *c);
+bool token_equal(const char *given, const char *want); /* constant time in the given token */
+
+enum { FRAMES_NONE, FRAMES_PNG, FRAMES_RGBA8 };
+
+/* stream.c: watch streams and stored files */
+void op_get(struct conn *c, json_t *msg, json_t *tag);
+/* Checks a file name inside a job directory (results.json, report.html, events.jsonl, scene.json,
+ * frames|diff/NAME/NNNN.png) and writes its path; -1 if it is not one of those. */
+int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *out, size_t size);
+/* Reads a whole file of at most max bytes (malloc'ed). */
+int read_whole_file(const char *path, size_t max, char **data, size_t *size);
+const char *file_content_type(const char *rel);
+
+/* http.c */
+void http_input(struct conn *c);
+
+/* listen.c */
+int listen_unix(const char *path, char *err, size_t err_size);
+int listen_tcp(const char *host_port, char *err, size_t err_size);
+int listen_systemd(struct daemon *d, char *err, size_t err_size);
+void sd_notifyf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* WATCHDOG_USEC halved in ms, or 0 when systemd does not watch this process. */
+int sd_watchdog_interval_ms(void);
+bool address_is_loopback(const char *host_port);
+
+void daemon_log(struct daemon *d, int level, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+#endif

@@ -1,0 +1,313 @@
+/* The HTTP/1.1 subset for dashboards: GET and HEAD, keep-alive, no request bodies. Routes: the dashboard
+ * page (web/), /healthz, /metrics (Prometheus text), and /v1/jobs... (JSON and stored files). */
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+#include "daemon.h"
+#include "jobs.h"
+#include "results/results.h"
+
+#define HTTP_MAX_HEADER 16384
+
+struct response {
+	int status;
+	const char *type;
+	char *body;          /* malloc'ed */
+	size_t size;
+	const char *extra;   /* more header lines, each ending in \r\n */
+};
+
+static const char *reason(int status)
+{
+	switch (status) {
+	case 200: return "OK";
+	case 400: return "Bad Request";
+	case 401: return "Unauthorized";
+	case 404: return "Not Found";
+	case 405: return "Method Not Allowed";
+	case 414: return "URI Too Long";
+	case 431: return "Request Header Fields Too Large";
+	case 503: return "Service Unavailable";
+	default: return "Error";
+	}
+}
+
+static void text(struct response *r, int status, const char *msg)
+{
+	r->status = status;
+	r->type = "text/plain; charset=utf-8";
+	r->body = strdup(msg);
+	r->size = r->body ? strlen(r->body) : 0;
+}
+
+static void json_body(struct response *r, json_t *o)
+{
+	r->status = 200;
+	r->type = "application/json";
+	r->body = json_dumps(o, JSON_COMPACT);
+	r->size = r->body ? strlen(r->body) : 0;
+	json_decref(o);
+}
+
+static void file_body(struct response *r, const char *path, const char *type)
+{
+	if (read_whole_file(path, 1u << 30, &r->body, &r->size)) {
+		text(r, 404, "not found\n");
+		return;
+	}
+	r->status = 200;
+	r->type = type;
+}
+
+/* Decodes %XX in place; -1 on a bad escape or an encoded NUL or '/'. */
+static int percent_decode(char *s)
+{
+	char *out = s;
+	for (; *s; s++) {
+		if (*s != '%') {
+			*out++ = *s;
+			continue;
+		}
+		if (!isxdigit((unsigned char)s[1]) || !isxdigit((unsigned char)s[2]))
+			return -1;
+		char hex[3] = {s[1], s[2], 0};
+		char c = (char)strtol(hex, NULL, 16);
+		if (c == 0 || c == '/')
+			return -1;
+		*out++ = c;
+		s += 2;
+	}
+	*out = 0;
+	return 0;
+}
+
+static void metrics(struct daemon *d, struct response *r)
+{
+	struct store *s = d->store;
+	struct scene_cache_stats cs;
+	scene_cache_stats(s->scenes, &cs);
+	char *buf = NULL;
+	size_t size = 0;
+	FILE *f = open_memstream(&buf, &size);
+	if (!f) {
+		text(r, 503, "out of memory\n");
+		return;
+	}
+	pthread_mutex_lock(&s->lock);
+	fprintf(f, "# HELP aalab_jobs Jobs known to the daemon, by state.\n# TYPE aalab_jobs gauge\n");
+	for (int st = JOB_QUEUED; st <= JOB_CANCELLED; st++)
+		fprintf(f, "aalab_jobs{state=\"%s\"} %d\n", job_state_name(st), store_count_state(s, st));
+	double busy = s->gpu_busy_seconds;
+	if (s->running && s->running->started_at > 0) {
+		struct timespec ts;
+		clock_gettime(CLOCK_REALTIME, &ts);
+		busy += ts.tv_sec + ts.tv_nsec / 1e9 - s->running->started_at;
+	}
+	fprintf(f, "# HELP aalab_frames_rendered_total Method frames rendered and scored.\n"
+		"# TYPE aalab_frames_rendered_total counter\naalab_frames_rendered_total %llu\n"
+		"# HELP aalab_jobs_finished_total Jobs that ended (done, failed or cancelled while running).\n"
+		"# TYPE aalab_jobs_finished_total counter\naalab_jobs_finished_total %llu\n"
+		"# HELP aalab_gpu_busy_seconds_total Seconds the GPU worker spent running jobs.\n"
+		"# TYPE aalab_gpu_busy_seconds_total counter\naalab_gpu_busy_seconds_total %.3f\n",
+		(unsigned long long)s->frames_rendered, (unsigned long long)s->jobs_finished, busy);
+	pthread_mutex_unlock(&s->lock);
+	fprintf(f, "# HELP aalab_scene_cache_hits_total Scene lookups served from the cache.\n"
+		"# TYPE aalab_scene_cache_hits_total counter\naalab_scene_cache_hits_total %llu\n"
+		"# HELP aalab_scene_cache_misses_total Scene lookups that loaded the file.\n"
+		"# TYPE aalab_scene_cache_misses_total counter\naalab_scene_cache_misses_total %llu\n"
+		"# HELP aalab_scene_cache_reloads_total Scenes loaded again because their file changed.\n"
+		"# TYPE aalab_scene_cache_reloads_total counter\naalab_scene_cache_reloads_total %llu\n"
+		"# HELP aalab_scene_cache_evictions_total Scenes dropped to stay within the byte budget.\n"
+		"# TYPE aalab_scene_cache_evictions_total counter\naalab_scene_cache_evictions_total %llu\n"
+		"# HELP aalab_scene_cache_bytes Bytes of scenes held.\n# TYPE aalab_scene_cache_bytes gauge\n"
+		"aalab_scene_cache_bytes %llu\n",
+		(unsigned long long)cs.hits, (unsigned long long)cs.misses, (unsigned long long)cs.reloads,
+		(unsigned long long)cs.evictions, (unsigned long long)cs.bytes);
+	fprintf(f, "# HELP aalab_connections Open client connections.\n# TYPE aalab_connections gauge\n"
+		"aalab_connections %d\n"
+		"# HELP aalab_connections_total Connections accepted.\n# TYPE aalab_connections_total counter\n"
+		"aalab_connections_total %llu\n"
+		"# HELP aalab_requests_total Protocol requests received.\n# TYPE aalab_requests_total counter\n"
+		"aalab_requests_total %llu\n"
+		"# HELP aalab_request_errors_total Protocol requests answered with an error.\n"
+		"# TYPE aalab_request_errors_total counter\naalab_request_errors_total %llu\n"
+		"# HELP aalab_http_requests_total HTTP requests served.\n# TYPE aalab_http_requests_total counter\n"
+		"aalab_http_requests_total %llu\n"
+		"# HELP aalab_frames_dropped_total Frames left out of slow clients' watch streams.\n"
+		"# TYPE aalab_frames_dropped_total counter\naalab_frames_dropped_total %llu\n"
+		"# HELP aalab_uptime_seconds Seconds since the daemon started.\n# TYPE aalab_uptime_seconds gauge\n"
+		"aalab_uptime_seconds %.1f\n",
+		d->conn_count, (unsigned long long)d->stats.connections_total,
+		(unsigned long long)d->stats.requests_total, (unsigned long long)d->stats.errors_total,
+		(unsigned long long)d->stats.http_requests_total, (unsigned long long)d->stats.frames_dropped_total,
+		(loop_now_ms() - d->started_ms) / 1000.0);
+	fclose(f);
+	r->status = 200;
+	r->type = "text/plain; version=0.0.4; charset=utf-8";
+	r->body = buf;
+	r->size = size;
+}
+
+static void job_route(struct daemon *d, char *rest, struct response *r)
+{
+	char *id = rest, *sub = strchr(rest, '/');
+	if (sub)
+		*sub++ = 0;
+	if (strlen(id) >= 16) {
+		text(r, 404, "no such job\n");
+		return;
+	}
+	pthread_mutex_lock(&d->store->lock);
+	struct job *job = store_find(d->store, id);
+	json_t *o = job && !sub ? job_to_json(job) : NULL;
+	pthread_mutex_unlock(&d->store->lock);
+	if (!job) {
+		text(r, 404, "no such job\n");
+		return;
+	}
+	if (!sub) {
+		json_body(r, o);
+		return;
+	}
+	/* frames|diff|flip/{method}/{n}.png: the method as its label ("ssaa:16") or directory name ("ssaa_16") */
+	char rel[600], path[1400];
+	snprintf(rel, sizeof rel, "%s", sub);
+	if (!strncmp(sub, "frames/", 7) || !strncmp(sub, "diff/", 5) || !strncmp(sub, "flip/", 5)) {
+		char *name = strchr(sub, '/') + 1, *slash = strchr(name, '/');
+		if (!slash || percent_decode(name)) {
+			text(r, 404, "not found\n");
+			return;
+		}
+		slash = strchr(name, '/');
+		*slash = 0;
+		char dir[300];
+		aa_results_method_dirname(name, dir, sizeof dir);
+		long n = strtol(slash + 1, NULL, 10);
+		if (strspn(slash + 1, "0123456789") == 0 || strcmp(slash + 1 + strspn(slash + 1, "0123456789"), ".png") ||
+		    n > 99999999) {
+			text(r, 404, "not found\n");
+			return;
+		}
+		*strchr(sub, '/') = 0; /* sub is now "frames", "diff" or "flip" */
+		snprintf(rel, sizeof rel, "%s/%s/%04ld.png", sub, dir, n);
+	}
+	if (job_file_path(d->store->dir, id, rel, path, sizeof path)) {
+		text(r, 404, "not found\n");
+		return;
+	}
+	file_body(r, path, file_content_type(rel));
+}
+
+static void route(struct daemon *d, char *target, struct response *r)
+{
+	char *q = strchr(target, '?');
+	if (q)
+		*q = 0; /* the dashboard adds ?t= to defeat caches; no route reads the query */
+	if (!strcmp(target, "/healthz")) {
+		text(r, d->draining ? 503 : 200, d->draining ? "draining\n" : "ok\n");
+	} else if (!strcmp(target, "/metrics")) {
+		metrics(d, r);
+	} else if (!strcmp(target, "/v1/jobs") || !strcmp(target, "/v1/jobs/")) {
+		json_t *arr = json_array();
+		pthread_mutex_lock(&d->store->lock);
+		for (struct job *j = d->store->jobs; j; j = j->next)
+			json_array_append_new(arr, job_to_json(j));
+		pthread_mutex_unlock(&d->store->lock);
+		json_body(r, json_pack("{so}", "jobs", arr));
+	} else if (!strncmp(target, "/v1/jobs/", 9)) {
+		job_route(d, target + 9, r);
+	} else if (!strcmp(target, "/") || !strncmp(target, "/web/", 5)) {
+		const char *name = target[1] ? target + 5 : "index.html";
+		char path[1400];
+		if (!*name || name[0] == '.' || strchr(name, '/') || strlen(name) > 64 || !d->cfg.web_dir[0]) {
+			text(r, 404, "not found\n");
+			return;
+		}
+		snprintf(path, sizeof path, "%s/%.64s", d->cfg.web_dir, name);
+		file_body(r, path, file_content_type(name));
+	} else {
+		text(r, 404, "not found\n");
+	}
+}
+
+static void respond(struct conn *c, struct response *r, bool head, bool keep_alive)
+{
+	char hdr[1024];
+	int n = snprintf(hdr, sizeof hdr, "HTTP/1.1 %d %s\r\nServer: aalabd/" PACKAGE_VERSION "\r\n"
+			 "Content-Type: %s\r\nContent-Length: %zu\r\nCache-Control: no-store\r\n%sConnection: %s\r\n\r\n",
+			 r->status, reason(r->status), r->type ? r->type : "text/plain", r->size,
+			 r->extra ? r->extra : "", keep_alive ? "keep-alive" : "close");
+	conn_send(c, hdr, (size_t)n);
+	if (!head && r->body)
+		conn_send(c, r->body, r->size);
+	free(r->body);
+	if (!keep_alive)
+		c->close_after_flush = true;
+}
+
+/* Handles every complete request in the input buffer. */
+void http_input(struct conn *c)
+{
+	struct daemon *d = c->d;
+	while (!c->closed && !c->close_after_flush && c->in_len > 0) {
+		char *end = memmem(c->in, c->in_len, "\r\n\r\n", 4);
+		if (!end) {
+			if (c->in_len > HTTP_MAX_HEADER) {
+				struct response r = {0};
+				text(&r, 431, "request header too large\n");
+				respond(c, &r, false, false);
+			}
+			return;
+		}
+		size_t hlen = (size_t)(end - c->in) + 4;
+		char *req = strndup(c->in, hlen - 4);
+		memmove(c->in, c->in + hlen, c->in_len - hlen);
+		c->in_len -= hlen;
+		if (!req)
+			return;
+		d->stats.http_requests_total++;
+		struct response r = {0};
+		char *save = NULL, *line = strtok_r(req, "\r\n", &save);
+		char method[16] = "", target[2100] = "", version[16] = "";
+		bool ok = line && sscanf(line, "%15s %2099s %15s", method, target, version) == 3 &&
+			  !strncmp(version, "HTTP/1.", 7) && target[0] == '/';
+		bool keep_alive = ok && strcmp(version, "HTTP/1.0") != 0, authorized = !d->token[0] || !c->via_tcp;
+		bool has_body = false;
+		while (ok && (line = strtok_r(NULL, "\r\n", &save))) {
+			char *colon = strchr(line, ':');
+			if (!colon)
+				continue;
+			*colon = 0;
+			char *value = colon + 1;
+			while (*value == ' ' || *value == '\t')
+				value++;
+			if (!strcasecmp(line, "Connection"))
+				keep_alive = strcasecmp(value, "close") != 0 &&
+					     (strcmp(version, "HTTP/1.0") != 0 || !strcasecmp(value, "keep-alive"));
+			else if (!strcasecmp(line, "Authorization") && d->token[0] && !strncasecmp(value, "Bearer ", 7))
+				authorized |= token_equal(value + 7, d->token);
+			else if ((!strcasecmp(line, "Content-Length") && strtol(value, NULL, 10) != 0) ||
+				 !strcasecmp(line, "Transfer-Encoding"))
+				has_body = true;
+		}
+		bool head = !strcmp(method, "HEAD");
+		if (!ok || has_body) {
+			text(&r, 400, "bad request: GET or HEAD with no body\n");
+			keep_alive = false;
+		} else if (strcmp(method, "GET") && !head) {
+			text(&r, 405, "only GET and HEAD\n");
+			r.extra = "Allow: GET, HEAD\r\n";
+		} else if (!authorized && strcmp(target, "/healthz")) {
+			text(&r, 401, "send Authorization: Bearer TOKEN\n");
+			r.extra = "WWW-Authenticate: Bearer\r\n";
+		} else {
+			route(d, target, &r);
+		}
+		free(req);
+		respond(c, &r, head, keep_alive);
+	}
+}

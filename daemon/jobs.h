@@ -1,0 +1,111 @@
+/* The job store: every job the daemon knows, in memory and on disk under STATE_DIR/jobs/ID/, the queue
+ * the GPU worker takes jobs from, and each job's event log (what `watch` streams). One mutex guards all
+ * of it; the event loop and the worker each hold it only for short updates. */
+#ifndef AALABD_JOBS_H
+#define AALABD_JOBS_H
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <jansson.h>
+
+#include "aa.h"
+
+enum job_state { JOB_QUEUED, JOB_RUNNING, JOB_DONE, JOB_FAILED, JOB_CANCELLED };
+
+struct job {
+	char id[16];
+	enum job_state state;
+	struct aa_job_spec spec;
+	json_t *spec_json;        /* canonical spec (aa_job_spec_to_json) */
+	char client[64];
+	double submitted_at, started_at, finished_at; /* seconds since the epoch, 0 if not yet */
+	int done, total;          /* units of work: frames x (1 + methods) */
+	struct aa_error error;    /* JOB_FAILED */
+	json_t *summary;          /* per-method summary once done */
+	uint64_t bytes;           /* size of the job directory once finished */
+	bool cancel;              /* asked to stop (cancel op, or drain timeout when requeue is set) */
+	bool requeue;             /* interrupted by shutdown: stays queued on disk */
+	bool inline_scene;        /* the scene came with the request: ID/scene.json */
+	/* event log: events[i] has sequence number i + 1 */
+	char **events;
+	unsigned long event_count, event_cap;
+	bool log_complete;        /* the last event (finished, failed, cancelled) is in the log */
+	bool events_loaded;       /* events of a job finished before this run were read from events.jsonl */
+	int watchers;             /* connections watching (a job is not deleted while watched) */
+	struct job *next;         /* store list, oldest first */
+};
+
+struct scene_cache;
+
+struct store {
+	pthread_mutex_t lock;
+	pthread_cond_t work;      /* signalled when a job is queued or the worker must stop */
+	char dir[1024];           /* STATE_DIR/jobs */
+	struct job *jobs;
+	unsigned long next_id;
+	bool worker_stop;         /* finish the running job, take no new one */
+	bool worker_exited;
+	struct job *running;
+	struct aa_engine *engine;
+	struct scene_cache *scenes;
+	struct loop *loop;        /* woken after every change a client may be waiting for */
+	int retention_jobs;
+	uint64_t retention_bytes;
+	pthread_t thread;
+	/* metrics */
+	uint64_t frames_rendered, jobs_finished;
+	double gpu_busy_seconds;
+};
+
+const char *job_state_name(enum job_state s);
+bool job_state_final(enum job_state s);
+
+/* Opens STATE_DIR (creating it), reads every job back: queued jobs stay queued, jobs that were running
+ * when the daemon died are queued again to re-run from the start. */
+int store_open(struct store *s, const char *state_dir, char *err, size_t err_size);
+void store_close(struct store *s);
+/* Adds a queued job (persisted before it is visible); the caller holds no lock. */
+struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const char *client,
+			 const char *scene_text, size_t scene_size, struct aa_error *err);
+struct job *store_find(struct store *s, const char *id); /* with the lock held */
+int store_count_active(struct store *s, const char *client); /* queued + running of a client, lock held */
+int store_count_state(struct store *s, enum job_state st);   /* lock held */
+/* Cancels: a queued job at once, a running job when the worker next checks. Lock held. */
+int store_cancel(struct store *s, struct job *job, struct aa_error *err);
+/* Writes STATE_DIR/jobs/ID/job.json atomically (lock held). */
+int store_save(struct store *s, struct job *job);
+/* Appends an event line to the log (lock held; takes ownership of line). */
+void store_append_event(struct store *s, struct job *job, char *line);
+/* Loads the event log of a job finished before this run from events.jsonl (lock held). */
+void store_load_events(struct store *s, struct job *job);
+/* Deletes the oldest finished jobs beyond the retention limits (lock held). */
+void store_apply_retention(struct store *s);
+json_t *job_to_json(const struct job *job); /* lock held */
+uint64_t store_measure(struct store *s, struct job *job);    /* bytes of the job directory */
+void store_clear_results(struct store *s, struct job *job);  /* before a (re-)run */
+void job_dir(const struct store *s, const struct job *job, char *out, size_t size);
+
+/* worker.c: the GPU worker thread */
+int worker_start(struct store *s);
+/* Asks the worker to stop after the running job; with cancel_running, the running job is interrupted
+ * and stays queued for the next start. */
+void worker_request_stop(struct store *s, bool cancel_running);
+void worker_join(struct store *s);
+
+/* scene_cache.c: loaded scenes kept by a byte budget, least recently used dropped first */
+struct scene_cache *scene_cache_create(uint64_t budget_bytes);
+void scene_cache_destroy(struct scene_cache *c);
+void scene_cache_set_budget(struct scene_cache *c, uint64_t budget_bytes);
+/* Returns a scene for file (loading it, or reloading it when the file changed since); the scene stays
+ * valid until the next call. */
+const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, struct aa_error *err);
+struct scene_cache_stats {
+	uint64_t hits, misses, reloads, evictions, bytes, budget;
+	int entries;
+};
+void scene_cache_stats(struct scene_cache *c, struct scene_cache_stats *out);
+
+#endif

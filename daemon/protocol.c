@@ -1,0 +1,443 @@
+/* The aalabd protocol (docs/protocol.md): one JSON object per line, answered by one line with "ok";
+ * submit may carry a scene as a binary payload, watch streams a job's events, get sends stored files.
+ * Every error is {code, message, path}, path naming the field at fault. */
+#include <ctype.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "daemon.h"
+#include "jobs.h"
+
+void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
+{
+	char msg[1024];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	json_t *o = json_pack("{sb s{ss ss ss}}", "ok", 0, "error", "code", code, "message", msg, "path", path);
+	if (tag)
+		json_object_set(o, "tag", tag);
+	c->d->stats.errors_total++;
+	conn_send_json(c, o);
+}
+
+static void reply(struct conn *c, json_t *tag, json_t *body)
+{
+	json_object_set_new(body, "ok", json_true());
+	if (tag)
+		json_object_set(body, "tag", tag);
+	conn_send_json(c, body);
+}
+
+/* Refuses keys a request does not know: a typo must not be silently ignored. */
+static int check_keys(struct conn *c, json_t *msg, json_t *tag, const char *const *allowed)
+{
+	const char *key;
+	json_t *v;
+	json_object_foreach(msg, key, v) {
+		int i = 0;
+		if (!strcmp(key, "op") || !strcmp(key, "tag") || !strcmp(key, "payload") || !strcmp(key, "payload_format"))
+			continue;
+		while (allowed[i] && strcmp(allowed[i], key))
+			i++;
+		if (!allowed[i]) {
+			char shown[65];
+			snprintf(shown, sizeof shown, "%s", key);
+			for (char *p = shown; *p; p++)
+				if (iscntrl((unsigned char)*p))
+					*p = '?';
+			protocol_error(c, tag, "bad_request", shown, "unknown key for op '%s'",
+				       json_string_value(json_object_get(msg, "op")));
+			return -1;
+		}
+	}
+	return 0;
+}
+
+long protocol_payload_size(struct conn *c, json_t *msg)
+{
+	json_t *p = json_is_object(msg) ? json_object_get(msg, "payload") : NULL;
+	if (!p)
+		return 0;
+	json_t *tag = json_object_get(msg, "tag");
+	if (!json_is_integer(p) || json_integer_value(p) < 0) {
+		protocol_error(c, tag, "bad_request", "payload", "payload is the number of bytes that follow the line");
+		c->close_after_flush = true; /* the stream cannot be resynchronised */
+		return -1;
+	}
+	json_int_t n = json_integer_value(p);
+	if ((size_t)n > c->d->cfg.max_request_bytes) {
+		protocol_error(c, tag, "too_large", "payload", "payload of %lld bytes is over the limit of %zu "
+			       "(max-request-bytes)", (long long)n, c->d->cfg.max_request_bytes);
+		c->discard = (size_t)n; /* skip it and go on with the next request */
+		return -1;
+	}
+	return (long)n;
+}
+
+static const char *get_job_id(struct conn *c, json_t *msg, json_t *tag)
+{
+	json_t *j = json_object_get(msg, "job");
+	if (!j) {
+		protocol_error(c, tag, "bad_request", "job", "missing: the job id");
+		return NULL;
+	}
+	const char *id = json_string_value(j);
+	if (!id || strlen(id) >= 16) {
+		protocol_error(c, tag, "bad_request", "job", "a job id is a string like \"000042\"");
+		return NULL;
+	}
+	return id;
+}
+
+/* Looks a job up and returns it with the store locked, or answers not_found. */
+static struct job *lock_job(struct conn *c, json_t *msg, json_t *tag)
+{
+	const char *id = get_job_id(c, msg, tag);
+	if (!id)
+		return NULL;
+	pthread_mutex_lock(&c->d->store->lock);
+	struct job *job = store_find(c->d->store, id);
+	if (!job) {
+		pthread_mutex_unlock(&c->d->store->lock);
+		protocol_error(c, tag, "not_found", "job", "no job '%s' (finished jobs are kept up to retention-jobs)", id);
+	}
+	return job;
+}
+
+static json_t *limits_json(const struct config *cfg)
+{
+	return json_pack("{sI sf si si si sI si}", "max_request_bytes", (json_int_t)cfg->max_request_bytes,
+			 "max_job_budget", cfg->max_job_budget, "max_jobs_per_client", cfg->max_jobs_per_client,
+			 "idle_timeout", cfg->idle_timeout_s, "slow_client_timeout", cfg->slow_client_timeout_s,
+			 "client_buffer_bytes", (json_int_t)cfg->client_buffer_bytes, "max_frames", AA_MAX_FRAMES);
+}
+
+bool token_equal(const char *given, const char *want)
+{
+	size_t n = given ? strlen(given) : 0, m = strlen(want);
+	unsigned diff = n != m;
+	for (size_t i = 0; i < m; i++) /* no early exit: the time taken says nothing about the token */
+		diff |= (unsigned)(want[i] ^ (i < n ? given[i] : 0));
+	return diff == 0;
+}
+
+static void op_hello(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {"version", "token", "client", NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *v = json_object_get(msg, "version");
+	if (v && (!json_is_integer(v) || json_integer_value(v) < 1)) {
+		protocol_error(c, tag, "unsupported_version", "version", "this server speaks protocol version %d; "
+			       "send the highest version the client speaks", AALABD_PROTOCOL_VERSION);
+		return;
+	}
+	if (c->via_tcp && c->d->token[0]) {
+		if (!token_equal(json_string_value(json_object_get(msg, "token")), c->d->token)) {
+			protocol_error(c, tag, "unauthorized", "token", "TCP clients must send the bearer token of the "
+				       "daemon's token file in hello");
+			c->close_after_flush = true;
+			return;
+		}
+		c->authed = true;
+	}
+	reply(c, tag, json_pack("{si s[i] ss so s[ss] ss}", "protocol", AALABD_PROTOCOL_VERSION, "versions",
+				AALABD_PROTOCOL_VERSION, "server", "aalabd " PACKAGE_VERSION, "limits",
+				limits_json(&c->d->cfg), "frame_formats", "png", "rgba8", "peer", c->peer));
+}
+
+static double method_samples(const struct aa_method_spec *m)
+{
+	int i = aa_method_param_index(m->method, "samples");
+	return i >= 0 && m->params.v[i] > 1 ? m->params.v[i] : 1;
+}
+
+static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payload, size_t size)
+{
+	static const char *const keys[] = {"job", NULL};
+	struct daemon *d = c->d;
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *job = json_object_get(msg, "job");
+	if (!json_is_object(job)) {
+		protocol_error(c, tag, "bad_request", "job", "expected the job object of docs/job-format.md");
+		return;
+	}
+	const char *fmt = json_string_value(json_object_get(msg, "payload_format"));
+	if (payload && (!fmt || strcmp(fmt, "scene") != 0)) {
+		protocol_error(c, tag, "bad_request", "payload_format", "a submit payload is a scene file: "
+			       "payload_format \"scene\"");
+		return;
+	}
+	struct aa_job_spec spec;
+	struct aa_error err = {0};
+	if (aa_job_spec_from_json(job, &spec, &err)) {
+		char path[300];
+		snprintf(path, sizeof path, "job%s%s", err.path[0] ? "." : "", err.path);
+		protocol_error(c, tag, aa_error_code_name(err.code), path, "%s", err.message);
+		return;
+	}
+	char file[1024];
+	if (payload) {
+		/* checked now so that a bad scene is refused with its field, not failed later in the queue */
+		struct aa_scene *scene = NULL;
+		char *text = strndup(payload, size);
+		int rc = !text || memchr(payload, 0, size) ||
+			 aa_scene_load_string(text, "scene", NULL, &scene, &err);
+		free(text);
+		aa_scene_free(scene);
+		if (rc) {
+			char path[300];
+			snprintf(path, sizeof path, "payload%s%s", err.path[0] ? "." : "", err.path);
+			protocol_error(c, tag, err.code ? aa_error_code_name(err.code) : "invalid", path, "%s",
+				       err.message[0] ? err.message : "the scene is not text");
+			return;
+		}
+		snprintf(spec.scene, sizeof spec.scene, "inline");
+	} else if (strchr(spec.scene, '/') || strstr(spec.scene, "..")) {
+		protocol_error(c, tag, "invalid", "job.scene", "the daemon takes scene names only (see the scenes op); "
+			       "send your own scene file as the payload of submit");
+		return;
+	} else if (aa_scene_resolve(spec.scene, file, sizeof file, &err)) {
+		protocol_error(c, tag, aa_error_code_name(err.code), "job.scene", "%s", err.message);
+		return;
+	}
+	double samples = spec.reference_samples;
+	for (int i = 0; i < spec.method_count; i++)
+		samples += method_samples(&spec.methods[i]);
+	double budget = (double)spec.width * spec.height * spec.frames * samples;
+	if (budget > d->cfg.max_job_budget) {
+		protocol_error(c, tag, "limit", "job", "job budget %.3g (width x height x frames x (reference samples "
+			       "+ method samples)) is over max-job-budget %.3g", budget, d->cfg.max_job_budget);
+		return;
+	}
+	if (d->draining) {
+		protocol_error(c, tag, "shutting_down", "", "the daemon is shutting down; submit again after restart");
+		return;
+	}
+	pthread_mutex_lock(&d->store->lock);
+	int mine = store_count_active(d->store, c->peer), queued = store_count_active(d->store, NULL);
+	pthread_mutex_unlock(&d->store->lock);
+	if (mine >= d->cfg.max_jobs_per_client) {
+		protocol_error(c, tag, "limit", "", "%s already has %d jobs queued or running (max-jobs-per-client)",
+			       c->peer, mine);
+		return;
+	}
+	if (queued >= d->cfg.max_queued_jobs) {
+		protocol_error(c, tag, "limit", "", "%d jobs are queued (max-queued-jobs); try again later", queued);
+		return;
+	}
+	struct job *j = store_submit(d->store, &spec, c->peer, payload, size, &err);
+	if (!j) {
+		protocol_error(c, tag, aa_error_code_name(err.code), err.path, "%s", err.message);
+		return;
+	}
+	reply(c, tag, json_pack("{ss ss si}", "job", j->id, "state", "queued", "ahead", queued));
+}
+
+static void op_status(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {"job", NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	struct job *job = lock_job(c, msg, tag);
+	if (!job)
+		return;
+	json_t *o = job_to_json(job);
+	pthread_mutex_unlock(&c->d->store->lock);
+	reply(c, tag, json_pack("{so}", "job", o));
+}
+
+static void op_list(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {"state", "limit", NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *st = json_object_get(msg, "state"), *lim = json_object_get(msg, "limit");
+	if (st && !json_is_string(st)) {
+		protocol_error(c, tag, "bad_request", "state", "expected queued, running, done, failed or cancelled");
+		return;
+	}
+	if (lim && (!json_is_integer(lim) || json_integer_value(lim) < 1)) {
+		protocol_error(c, tag, "bad_request", "limit", "expected a positive integer");
+		return;
+	}
+	json_int_t limit = lim ? json_integer_value(lim) : 1000;
+	json_t *arr = json_array();
+	pthread_mutex_lock(&c->d->store->lock);
+	int total = 0;
+	for (struct job *j = c->d->store->jobs; j; j = j->next)
+		total += !st || !strcmp(job_state_name(j->state), json_string_value(st));
+	int skip = total > limit ? total - (int)limit : 0; /* the newest `limit` jobs */
+	for (struct job *j = c->d->store->jobs; j; j = j->next) {
+		if (st && strcmp(job_state_name(j->state), json_string_value(st)))
+			continue;
+		if (skip > 0) {
+			skip--;
+			continue;
+		}
+		json_array_append_new(arr, job_to_json(j));
+	}
+	pthread_mutex_unlock(&c->d->store->lock);
+	reply(c, tag, json_pack("{so}", "jobs", arr));
+}
+
+static void op_cancel(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {"job", NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	struct job *job = lock_job(c, msg, tag);
+	if (!job)
+		return;
+	struct aa_error err = {0};
+	int rc = store_cancel(c->d->store, job, &err);
+	json_t *o = rc ? NULL : json_pack("{ss ss}", "job", job->id, "state", job_state_name(job->state));
+	pthread_mutex_unlock(&c->d->store->lock);
+	if (rc) {
+		protocol_error(c, tag, "invalid", "job", "%s", err.message);
+		return;
+	}
+	conns_pump_watches(c->d);
+	reply(c, tag, o);
+}
+
+static void op_scenes(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	char **names;
+	int count;
+	if (aa_scene_list(&names, &count)) {
+		protocol_error(c, tag, "internal", "", "cannot list the scene directories");
+		return;
+	}
+	json_t *arr = json_array();
+	for (int i = 0; i < count; i++) {
+		json_array_append_new(arr, json_string(names[i]));
+		free(names[i]);
+	}
+	free(names);
+	reply(c, tag, json_pack("{so}", "scenes", arr));
+}
+
+static void op_methods(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *arr = json_array();
+	for (int i = 0; i < aa_method_count; i++) {
+		const struct aa_method *m = aa_methods[i];
+		struct aa_method_params defaults;
+		aa_method_defaults(m, &defaults);
+		json_t *params = json_array();
+		for (int p = 0; p < m->param_count; p++) {
+			char def[64];
+			aa_method_param_text(m, &defaults, p, def, sizeof def);
+			json_array_append_new(params, json_pack("{ss ss ss}", "name", m->params[p].name, "default", def,
+								"help", m->params[p].help ? m->params[p].help : ""));
+		}
+		json_array_append_new(arr, json_pack("{ss ss so}", "name", m->name, "summary", m->summary, "params",
+						     params));
+	}
+	reply(c, tag, json_pack("{so}", "methods", arr));
+}
+
+static void op_watch(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {"job", "after", "frames", NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *after = json_object_get(msg, "after"), *frames = json_object_get(msg, "frames");
+	if (after && (!json_is_integer(after) || json_integer_value(after) < 0)) {
+		protocol_error(c, tag, "bad_request", "after", "expected the sequence number of the last event seen (0: all)");
+		return;
+	}
+	int fmt = FRAMES_NONE;
+	const char *f = frames ? json_string_value(frames) : "none";
+	if (f && !strcmp(f, "png"))
+		fmt = FRAMES_PNG;
+	else if (f && !strcmp(f, "rgba8"))
+		fmt = FRAMES_RGBA8;
+	else if (!f || strcmp(f, "none")) {
+		protocol_error(c, tag, "bad_request", "frames", "expected none, png or rgba8");
+		return;
+	}
+	if (c->watch_job) {
+		protocol_error(c, tag, "busy", "", "this connection is already watching job %s; open another",
+			       c->watch_job->id);
+		return;
+	}
+	struct job *job = lock_job(c, msg, tag);
+	if (!job)
+		return;
+	store_load_events(c->d->store, job);
+	job->watchers++;
+	c->watch_job = job;
+	c->watch_next_seq = after ? (unsigned long)json_integer_value(after) + 1 : 1;
+	c->watch_frames = fmt;
+	c->frames_dropped = 0;
+	json_decref(c->watch_tag);
+	c->watch_tag = json_incref(tag);
+	json_t *o = json_pack("{ss ss sI}", "job", job->id, "state", job_state_name(job->state), "events",
+			      (json_int_t)job->event_count);
+	pthread_mutex_unlock(&c->d->store->lock);
+	reply(c, tag, o);
+	protocol_pump_watch(c);
+}
+
+static void op_ping(struct conn *c, json_t *msg, json_t *tag)
+{
+	static const char *const keys[] = {NULL};
+	if (check_keys(c, msg, tag, keys))
+		return;
+	reply(c, tag, json_pack("{sb}", "pong", 1));
+}
+
+struct op_entry {
+	const char *name;
+	void (*exec)(struct conn *c, json_t *msg, json_t *tag);
+};
+
+static const struct op_entry ops[] = {
+	{"hello", op_hello}, {"ping", op_ping}, {"status", op_status}, {"list", op_list}, {"cancel", op_cancel},
+	{"scenes", op_scenes}, {"methods", op_methods}, {"watch", op_watch}, {"get", op_get},
+};
+
+void protocol_request(struct conn *c, json_t *msg, const char *payload, size_t payload_size)
+{
+	json_t *tag = json_is_object(msg) ? json_object_get(msg, "tag") : NULL;
+	const char *op = json_is_object(msg) ? json_string_value(json_object_get(msg, "op")) : NULL;
+	if (!json_is_object(msg))
+		protocol_error(c, NULL, "bad_request", "", "a request is a JSON object: {\"op\": ..., ...}");
+	else if (tag && !json_is_integer(tag) && !(json_is_string(tag) && strlen(json_string_value(tag)) <= 64))
+		protocol_error(c, NULL, "bad_request", "tag", "a tag is an integer or a string of at most 64 bytes");
+	else if (!json_object_get(msg, "op"))
+		protocol_error(c, tag, "bad_request", "op", "missing: what to do (hello, submit, watch, ...)");
+	else if (!op)
+		protocol_error(c, tag, "bad_request", "op", "expected a string");
+	else if (!c->authed && strcmp(op, "hello") != 0)
+		protocol_error(c, tag, "unauthorized", "token", "on TCP, send hello with the token first");
+	else if (payload && strcmp(op, "submit") != 0)
+		protocol_error(c, tag, "bad_request", "payload", "only submit takes a payload");
+	else if (strcmp(op, "submit") == 0)
+		op_submit(c, msg, tag, payload, payload_size);
+	else {
+		size_t i = 0, n = sizeof ops / sizeof ops[0];
+		while (i < n && strcmp(ops[i].name, op) != 0)
+			i++;
+		if (i < n)
+			ops[i].exec(c, msg, tag);
+		else
+			protocol_error(c, tag, "unknown_op", "op", "unknown op; ops: hello, ping, submit, watch, status, "
+				       "list, cancel, get, scenes, methods");
+	}
+	json_decref(msg);
+}

@@ -1,0 +1,302 @@
+/* The GPU worker thread: owns the engine (the Vulkan device) and the scene cache, takes queued jobs one
+ * at a time, runs them through aa_job_run_scene, writes their results under the job directory and
+ * turns engine events into the job's event log. The event loop never waits for it. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "jobs.h"
+#include "loop.h"
+#include "results/results.h"
+
+struct run_ctx {
+	struct store *s;
+	struct job *job;
+	char dir[1200];
+	FILE *log;                /* events.jsonl */
+	int done;
+	int failed_writes;
+	struct aa_error write_err;
+};
+
+static double now_s(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+/* JSON has no NaN or Infinity: undefined numbers are null. */
+static json_t *num(double v)
+{
+	return isfinite(v) ? json_real(v) : json_null();
+}
+
+/* Gives the event its sequence number, logs it and wakes the event loop. Returns non-zero when the job
+ * must stop. */
+static int publish(struct run_ctx *ctx, json_t *ev, bool final)
+{
+	struct store *s = ctx->s;
+	json_object_set_new(ev, "job", json_string(ctx->job->id));
+	pthread_mutex_lock(&s->lock);
+	json_object_set_new(ev, "seq", json_integer((json_int_t)ctx->job->event_count + 1));
+	char *line = json_dumps(ev, JSON_COMPACT);
+	if (line && ctx->log)
+		fprintf(ctx->log, "%s\n", line);
+	if (line)
+		store_append_event(s, ctx->job, line);
+	if (final)
+		ctx->job->log_complete = true;
+	int stop = ctx->job->cancel;
+	pthread_mutex_unlock(&s->lock);
+	json_decref(ev);
+	loop_wake(s->loop);
+	return stop;
+}
+
+static json_t *started_event(const struct aa_job_result *r)
+{
+	json_t *plan = json_array(), *methods = json_array();
+	for (int i = 0; i < r->plan_count; i++)
+		json_array_append_new(plan, json_pack("{ss ss sb}", "pass", r->plan[i].pass, "reason",
+						      r->plan[i].reason, "ran", r->plan[i].ran));
+	for (int i = 0; i < r->method_count; i++)
+		json_array_append_new(methods, json_string(r->methods[i].label));
+	return json_pack("{ss ss ss so so si si si}", "event", "job_started", "scene", r->scene_name, "device",
+			 r->device_name, "plan", plan, "methods", methods, "frames", r->spec.frames, "width",
+			 r->spec.width, "height", r->spec.height);
+}
+
+static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
+{
+	char rel[256];
+	json_t *o;
+	bool images = ctx->job->spec.keep_frames;
+	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
+		const struct aa_reference_frame *rf = &ev->result->reference.frames[ev->frame_ordinal];
+		o = json_pack("{ss ss si si sf so}", "event", "reference_frame", "method", "reference", "frame",
+			      ev->frame, "ordinal", ev->frame_ordinal, "gpu_ms", rf->gpu_ms, "convergence_psnr",
+			      num(rf->convergence_psnr));
+		aa_results_frame_relpath("frames", "reference", ev->frame_ordinal, rel, sizeof rel);
+	} else {
+		const struct aa_method_result *m = &ev->result->methods[ev->method_index];
+		const struct aa_frame_result *fr = &m->frames[ev->frame_ordinal];
+		json_t *passes = json_array();
+		for (int i = 0; i < fr->pass_count; i++)
+			json_array_append_new(passes, json_pack("{ss so}", "name", fr->passes[i].name, "gpu_ms",
+								num(fr->passes[i].gpu_ms)));
+		o = json_pack("{ss ss si si so so so s{so sb so so}}", "event", "method_frame", "method", m->label,
+			      "frame", ev->frame, "ordinal", ev->frame_ordinal, "gpu_ms", num(fr->gpu_ms), "cpu_ms",
+			      num(fr->cpu_ms), "passes", passes, "metrics", "psnr", num(fr->metrics.psnr),
+			      "identical", fr->metrics.identical, "ssim", num(fr->metrics.ssim), "mse",
+			      num(fr->metrics.mse));
+		aa_results_frame_relpath("frames", m->label, ev->frame_ordinal, rel, sizeof rel);
+		if (images) {
+			char diff[256];
+			aa_results_frame_relpath("diff", m->label, ev->frame_ordinal, diff, sizeof diff);
+			json_object_set_new(o, "diff", json_string(diff));
+		}
+	}
+	if (images)
+		json_object_set_new(o, "image", json_string(rel));
+	json_object_set_new(o, "done", json_integer(++ctx->done));
+	json_object_set_new(o, "total", json_integer(ctx->job->total));
+	return o;
+}
+
+static int on_event(const struct aa_event *ev, void *user)
+{
+	struct run_ctx *ctx = user;
+	struct store *s = ctx->s;
+	switch (ev->type) {
+	case AA_EVENT_JOB_STARTED:
+		return publish(ctx, started_event(ev->result), false);
+	case AA_EVENT_REFERENCE_FRAME:
+	case AA_EVENT_METHOD_FRAME:
+		if (ctx->job->spec.keep_frames && aa_results_write_event_images(ctx->dir, ev, &ctx->write_err)) {
+			ctx->failed_writes++;
+			return 1; /* stored results must be complete; a failed write fails the job */
+		}
+		if (ev->type == AA_EVENT_METHOD_FRAME) {
+			pthread_mutex_lock(&s->lock);
+			s->frames_rendered++;
+			pthread_mutex_unlock(&s->lock);
+		}
+		return publish(ctx, frame_event(ctx, ev), false);
+	case AA_EVENT_PROGRESS:
+		pthread_mutex_lock(&s->lock);
+		ctx->job->done = ev->done;
+		ctx->job->total = ev->total;
+		int stop = ctx->job->cancel;
+		pthread_mutex_unlock(&s->lock);
+		return stop;
+	default:
+		return 0;
+	}
+}
+
+/* Per-method cost and accuracy, the numbers a dashboard plots: taken from results.json's methods. */
+static json_t *summarize(const json_t *results)
+{
+	json_t *out = json_array(), *m;
+	size_t i;
+	json_array_foreach(json_object_get(results, "methods"), i, m) {
+		json_t *metrics = json_object_get(m, "metrics");
+		json_array_append_new(out, json_pack("{sO sO sO sO sO}", "label", json_object_get(m, "label"),
+			"gpu_ms", json_object_get(json_object_get(m, "gpu_ms"), "median"),
+			"memory_bytes", json_object_get(m, "memory_bytes"),
+			"psnr", json_object_get(json_object_get(metrics, "psnr"), "mean"),
+			"ssim", json_object_get(json_object_get(metrics, "ssim"), "mean")));
+	}
+	return out;
+}
+
+static const struct aa_scene *find_scene(struct store *s, struct job *job, const char *dir, char *file,
+					 size_t size, struct aa_error *err)
+{
+	if (!job->inline_scene) {
+		if (aa_scene_resolve(job->spec.scene, file, size, err))
+			return NULL;
+	} else if ((size_t)snprintf(file, size, "%s/scene.json", dir) >= size) {
+		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
+		return NULL;
+	}
+	return scene_cache_get(s->scenes, file, err);
+}
+
+static void run_job(struct store *s, struct job *job)
+{
+	struct run_ctx ctx = {.s = s, .job = job};
+	job_dir(s, job, ctx.dir, sizeof ctx.dir);
+	store_clear_results(s, job);
+	char path[1400], file[1400] = "";
+	snprintf(path, sizeof path, "%s/events.jsonl", ctx.dir);
+	ctx.log = fopen(path, "w");
+
+	struct aa_error err = {0};
+	struct aa_job_result *result = NULL;
+	double t0 = now_s();
+	const struct aa_scene *scene = find_scene(s, job, ctx.dir, file, sizeof file, &err);
+	int rc = scene ? aa_job_run_scene(s->engine, &job->spec, scene, on_event, &ctx, &result, &err) : -1;
+	double busy = now_s() - t0;
+	if (rc && ctx.failed_writes)
+		err = ctx.write_err;
+	json_t *summary = NULL;
+	if (rc == 0) {
+		snprintf(result->scene_file, sizeof result->scene_file, "%.1000s", job->inline_scene ? "scene.json" : file);
+		json_t *results = aa_results_to_json(result);
+		summary = summarize(results);
+		json_decref(results);
+		if (aa_results_write_json(result, ctx.dir, &err) || aa_report_write_html(result, ctx.dir, &err))
+			rc = -1;
+	}
+	if (result) {
+		aa_job_result_free(result);
+		free(result);
+	}
+
+	pthread_mutex_lock(&s->lock);
+	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
+	json_t *ev;
+	if (rc == 0) {
+		job->state = JOB_DONE;
+		job->summary = json_incref(summary);
+		ev = json_pack("{ss so ss}", "event", "job_finished", "summary", summary, "results", "results.json");
+	} else if (err.code == AA_ERR_CANCELLED && !ctx.failed_writes) {
+		json_decref(summary);
+		job->state = requeue ? JOB_QUEUED : JOB_CANCELLED;
+		ev = json_pack("{ss ss}", "event", "job_cancelled", "state", requeue ? "queued" : "cancelled");
+	} else {
+		json_decref(summary);
+		job->state = JOB_FAILED;
+		job->error = err;
+		ev = json_pack("{ss s{ss ss ss}}", "event", "job_failed", "error", "code", aa_error_code_name(err.code),
+			       "message", err.message, "path", err.path);
+	}
+	if (requeue) {
+		job->started_at = 0; /* the next start runs it again from the beginning */
+		job->done = 0;
+	} else {
+		job->finished_at = now_s();
+	}
+	s->gpu_busy_seconds += busy;
+	s->jobs_finished += !requeue;
+	pthread_mutex_unlock(&s->lock);
+	publish(&ctx, ev, true);
+	if (ctx.log) {
+		fflush(ctx.log);
+		fsync(fileno(ctx.log));
+		fclose(ctx.log);
+	}
+	uint64_t bytes = store_measure(s, job);
+	pthread_mutex_lock(&s->lock);
+	job->bytes = bytes;
+	store_save(s, job);
+	store_apply_retention(s);
+	pthread_mutex_unlock(&s->lock);
+	loop_wake(s->loop);
+}
+
+static struct job *next_queued(struct store *s)
+{
+	for (struct job *j = s->jobs; j; j = j->next)
+		if (j->state == JOB_QUEUED && !j->requeue)
+			return j;
+	return NULL;
+}
+
+static void *worker_main(void *arg)
+{
+	struct store *s = arg;
+	pthread_mutex_lock(&s->lock);
+	for (;;) {
+		struct job *job = NULL;
+		while (!s->worker_stop && !(job = next_queued(s)))
+			pthread_cond_wait(&s->work, &s->lock);
+		if (s->worker_stop)
+			break;
+		job->state = JOB_RUNNING;
+		job->started_at = now_s();
+		job->done = 0;
+		for (unsigned long i = 0; i < job->event_count; i++)
+			free(job->events[i]);
+		job->event_count = 0;
+		job->log_complete = false;
+		s->running = job;
+		store_save(s, job);
+		pthread_mutex_unlock(&s->lock);
+		loop_wake(s->loop);
+		run_job(s, job);
+		pthread_mutex_lock(&s->lock);
+		s->running = NULL;
+	}
+	s->worker_exited = true;
+	pthread_mutex_unlock(&s->lock);
+	loop_wake(s->loop);
+	return NULL;
+}
+
+int worker_start(struct store *s)
+{
+	return pthread_create(&s->thread, NULL, worker_main, s) == 0 ? 0 : -1;
+}
+
+void worker_request_stop(struct store *s, bool cancel_running)
+{
+	pthread_mutex_lock(&s->lock);
+	s->worker_stop = true;
+	if (cancel_running && s->running) {
+		s->running->cancel = true;
+		s->running->requeue = true;
+	}
+	pthread_cond_signal(&s->work);
+	pthread_mutex_unlock(&s->lock);
+}
+
+void worker_join(struct store *s)
+{
+	pthread_join(s->thread, NULL);
+}

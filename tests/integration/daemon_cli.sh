@@ -1,0 +1,72 @@
+#!/bin/sh
+# The client's service commands against a real aalabd: submit, watch, status, list, cancel, get, with
+# --connect and --json; `aalab run` uses the daemon when one answers and runs in-process with --local.
+. "$(dirname "$0")/../lib.sh"
+AALABD="$top_builddir/aalabd"
+sock="$TMP/aalabd.sock"
+"$AALABD" --socket "$sock" --state-dir "$TMP/state" >"$TMP/daemon.log" 2>&1 &
+daemon=$!
+trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
+i=0
+until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
+	i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
+	kill -0 $daemon 2>/dev/null || { cat "$TMP/daemon.log"; fail "aalabd exited"; finish; }
+	sleep 0.1
+done
+C="--connect unix:$sock"
+job="--scene thin-wires --methods none,ssaa:4 --frames 2 --size 64x36 --reference-samples 4"
+
+expect_status 0 "submit prints a job id" -- "$AALAB" submit $job $C
+id=$(cat "$TMP/out")
+echo "$id" | grep -Eq '^[0-9]{6}$' && pass "job id $id" || fail "job id '$id'"
+expect_status 0 "watch follows it to the end" -- "$AALAB" watch "$id" $C
+grep -q "job_finished" "$TMP/out" && pass "watch prints plain lines ending in job_finished" || fail "watch output: $(cat "$TMP/out")"
+expect_status 0 "watch --after 3 --json" -- "$AALAB" watch "$id" --after 3 --json $C
+/usr/bin/python3 -c '
+import json, sys
+ev = [json.loads(l) for l in open(sys.argv[1])]
+assert ev[0]["seq"] == 4 and ev[-1]["event"] == "job_finished", ev[0]
+' "$TMP/out" && pass "--after resumes at event 4, as JSON lines" || fail "watch --after --json: $(head -c 300 "$TMP/out")"
+expect_status 0 "status" -- "$AALAB" status "$id" $C
+grep -q "done" "$TMP/out" && grep -q "ssaa:4" "$TMP/out" && pass "status shows done and the summary" || fail "status: $(cat "$TMP/out")"
+expect_status 0 "status --json" -- "$AALAB" status "$id" --json $C
+/usr/bin/python3 -c 'import json,sys; assert json.load(open(sys.argv[1]))["state"] == "done"' "$TMP/out" && pass "status --json parses" || fail "status --json"
+expect_status 0 "list" -- "$AALAB" list $C
+grep -q "$id *done" "$TMP/out" && pass "list shows the job" || fail "list: $(cat "$TMP/out")"
+expect_status 0 "list --state done --json" -- "$AALAB" list --state done --json $C
+expect_status 0 "get downloads the results" -- "$AALAB" get "$id" --out "$TMP/got" $C
+for f in results.json report.html frames/reference/0000.png frames/ssaa_4/0001.png diff/none/0000.png; do
+	[ -s "$TMP/got/$f" ] && pass "got $f" || fail "get did not write $f"
+done
+expect_status 0 "get --file results.json" -- "$AALAB" get "$id" --file results.json $C
+cmp -s "$TMP/out" "$TMP/got/results.json" && pass "get --file prints the file" || fail "get --file differs"
+expect_status 2 "status of an unknown job" -- "$AALAB" status 999999 $C
+expect_stderr "aalab status: job: no job '999999'" "the error names the field"
+expect_status 2 "submit a bad job" -- "$AALAB" submit --size 0x5 $C
+expect_stderr "aalab submit: job.size: " "the daemon's error names job.size"
+expect_status 1 "no daemon on another socket" -- "$AALAB" list --connect "unix:$TMP/none.sock"
+expect_stderr "cannot connect to $TMP/none.sock" "and says so"
+
+# cancel: a long job, cancelled while queued or running
+expect_status 0 "submit a long job" -- "$AALAB" submit $job --frames 400 $C
+long=$(cat "$TMP/out")
+expect_status 0 "cancel it" -- "$AALAB" cancel "$long" $C
+expect_status 1 "watch of a cancelled job exits 1" -- "$AALAB" watch "$long" $C
+expect_stderr "was cancelled" "watch says it was cancelled"
+
+# run: through the daemon ($AALAB_CONNECT), and in-process with --local
+AALAB_CONNECT="unix:$sock" expect_status 0 "run through the daemon" -- "$AALAB" run $job --out "$TMP/remote"
+grep -q "aalab run: job [0-9]* on aalabd" "$TMP/err" && pass "run says it used aalabd" || fail "run did not use aalabd: $(cat "$TMP/err")"
+[ -s "$TMP/remote/results.json" ] && [ -s "$TMP/remote/frames/none/0000.png" ] && pass "run wrote results and frames" || fail "run via daemon: missing files"
+grep -q "| ssaa:4 |" "$TMP/out" && pass "run prints the table" || fail "run table: $(cat "$TMP/out")"
+AALAB_CONNECT="unix:$sock" expect_status 0 "run --local" -- "$AALAB" run $job --local --out "$TMP/local" --quiet
+grep -q "on aalabd" "$TMP/err" && fail "--local used the daemon" || pass "--local runs in this process"
+for f in frames/ssaa_4/0001.png frames/reference/0000.png; do
+	cmp -s "$TMP/remote/$f" "$TMP/local/$f" && pass "$f is identical from daemon and in-process" || fail "$f differs"
+done
+
+kill -TERM $daemon
+wait $daemon
+status=$?
+[ $status -eq 0 ] && pass "aalabd exits 0 on SIGTERM" || { fail "aalabd exit $status"; tail -20 "$TMP/daemon.log"; }
+finish

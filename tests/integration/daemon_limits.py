@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""aalabd's limits with clear errors: max-connections, idle and request timeouts, retention of finished
+jobs by count, and the scene cache (a changed scene file is loaded again)."""
+import os
+import shutil
+import socket
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from daemon_lib import Client, Daemon, SMALL_JOB, check, finish, http_get, wait_state
+
+d = None
+tmp = tempfile.mkdtemp(prefix="aalabd-limits.")
+try:
+    scenes = os.path.join(tmp, "scenes")
+    shutil.copytree(os.environ["AALAB_SCENE_DIR"], scenes)
+    d = Daemon("--max-connections", "4", "--idle-timeout", "2", "--request-timeout", "2",
+               "--retention-jobs", "2", http=True, env={"AALAB_SCENE_DIR": scenes})
+    # max-connections: the fifth gets one error line and is closed
+    conns = [d.connect() for _ in range(4)]
+    for c in conns:
+        c.request({"op": "ping"})
+    extra = d.connect()
+    r = extra.read()
+    check(r["error"]["code"] == "limit" and "too many connections" in r["error"]["message"],
+          "connection 5 of max 4 gets a limit error")
+    extra.close()
+    for c in conns:
+        c.close()
+    time.sleep(0.3)
+
+    # idle timeout: a silent connection is closed after 2 s
+    idle = d.connect()
+    idle.sock.settimeout(10)
+    t0 = time.time()
+    closed = idle.sock.recv(1) == b""
+    check(closed and 1.5 < time.time() - t0 < 6, "an idle connection is closed after idle-timeout (%.1f s)" % (time.time() - t0))
+    # request timeout: half a line, then nothing
+    slow = d.connect()
+    slow.send_raw(b'{"op": "pi')
+    r = slow.read()
+    check(r["error"]["code"] == "timeout", "an unfinished line gets a timeout error")
+
+    # retention: three jobs, the oldest is deleted once the third finishes
+    c = d.connect()
+    ids = []
+    for i in range(3):
+        ids.append(c.request({"op": "submit", "job": dict(SMALL_JOB, frames=1)})["job"])
+        wait_state(c, ids[-1], ["done"])
+    r = c.request({"op": "status", "job": ids[0]})
+    check(r["error"]["code"] == "not_found", "the oldest finished job is gone (retention-jobs 2)")
+    check(not os.path.exists(os.path.join(d.state, "jobs", ids[0])), "and its directory")
+    check(all(c.request({"op": "status", "job": j})["ok"] for j in ids[1:]), "the two newest are kept")
+
+    # scene cache: hits for the same file, a reload when the file changes
+    metrics = http_get(d.http_port, "/metrics")[2].decode()
+    check("aalab_scene_cache_misses_total 1\n" in metrics and "aalab_scene_cache_hits_total 2\n" in metrics,
+          "three jobs on one scene: one miss, two hits")
+    path = os.path.join(scenes, "thin-wires.json")
+    with open(path) as f:
+        text = f.read()
+    with open(path, "w") as f:
+        f.write(text + "\n")  # same scene, new size and time: the cache must notice
+    os.utime(path, (time.time() + 5, time.time() + 5))
+    j = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=1)})["job"]
+    wait_state(c, j, ["done", "failed"])
+    metrics = http_get(d.http_port, "/metrics")[2].decode()
+    check("aalab_scene_cache_reloads_total 1\n" in metrics, "a changed scene file is loaded again")
+    c.close()
+    check(d.stop() == 0, "aalabd exits 0")
+except Exception as e:
+    import traceback
+    traceback.print_exc()
+    check(False, "test ran to the end: %s" % e)
+    if d:
+        print(d.read_log()[-3000:])
+finally:
+    if d:
+        log = d.read_log()
+        if "Sanitizer" in log or "runtime error" in log:
+            check(False, "sanitizer report:\n" + log[-3000:])
+        d.cleanup()
+    shutil.rmtree(tmp, ignore_errors=True)
+finish()

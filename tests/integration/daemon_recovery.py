@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""The job store survives a crash: kill -9 during a job, start aalabd again on the same state directory,
+and the interrupted job runs again from the start and completes with all its results; the job queued
+behind it runs too. SIGTERM with a job running drains: the job finishes before the daemon exits."""
+import json
+import os
+import signal
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from daemon_lib import Daemon, SMALL_JOB, check, finish, wait_state
+
+d = None
+try:
+    d = Daemon()
+    c = d.connect()
+    long_job = dict(SMALL_JOB, frames=12, keep_frames=True)
+    a = c.request({"op": "submit", "job": long_job})["job"]
+    b = c.request({"op": "submit", "job": SMALL_JOB})["job"]
+    wait_state(c, a, ["running"])
+    while c.request({"op": "status", "job": a})["job"]["done"] < 4:
+        time.sleep(0.02)
+    d.proc.send_signal(signal.SIGKILL)
+    d.proc.wait()
+    c.close()
+    with open(os.path.join(d.state, "jobs", a, "job.json")) as f:
+        check(json.load(f)["state"] == "running", "after kill -9 the store says job %s was running" % a)
+    with open(os.path.join(d.state, "jobs", b, "job.json")) as f:
+        check(json.load(f)["state"] == "queued", "and job %s queued" % b)
+
+    d.start()
+    check("job %s was interrupted; it will run again" % a in d.read_log(), "the restart says it re-runs the job")
+    c = d.connect()
+    for job in (a, b):
+        st = wait_state(c, job, ["done", "failed", "cancelled"])
+        check(st["state"] == "done", "job %s completes after the restart" % job)
+    events, end = c.watch(a)
+    check(events[0]["event"] == "job_started" and events[-1]["event"] == "job_finished" and
+          [e["seq"] for e in events] == list(range(1, len(events) + 1)),
+          "the re-run's event log is whole: started .. finished, %d events" % len(events))
+    with open(os.path.join(d.state, "jobs", a, "results.json")) as f:
+        r = json.load(f)
+    frames = [len(m["metrics"]["psnr"]["per_frame"]) for m in r["methods"]]
+    check(frames == [12, 12], "results.json has all 12 frames of each method")
+    pngs = sum(len(f) for _, _, f in os.walk(os.path.join(d.state, "jobs", a, "frames")))
+    check(pngs == 12 * 3, "every frame image is stored (%d)" % pngs)
+    leftovers = [f for _, _, fs in os.walk(d.state) for f in fs if ".tmp" in f]
+    check(not leftovers, "no temporary files left (%s)" % leftovers)
+
+    # SIGTERM while a job runs: the daemon finishes it, then exits 0
+    job = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=6)})["job"]
+    wait_state(c, job, ["running"])
+    check(d.stop() == 0, "SIGTERM during a job: aalabd exits 0")
+    with open(os.path.join(d.state, "jobs", job, "job.json")) as f:
+        check(json.load(f)["state"] == "done", "the running job was finished before exit")
+    log = d.read_log()
+    check("stopping" in log, "the log says it is stopping")
+except Exception as e:
+    import traceback
+    traceback.print_exc()
+    check(False, "test ran to the end: %s" % e)
+    if d:
+        print(d.read_log()[-3000:])
+finally:
+    if d:
+        log = d.read_log()
+        if "ERROR: AddressSanitizer" in log or "runtime error" in log:
+            check(False, "sanitizer report in the daemon log:\n" + log[-3000:])
+        d.cleanup()
+finish()
