@@ -11,7 +11,7 @@ $(patsubst shaders/%,shaders/%.h,$(fxaa_glsl)): $(srcdir)/shaders/fxaa_common.gl
 
 # fxaa and fxaa-cs agree within 1/255; fxaa beats none; bad parameters are refused
 check_PROGRAMS += tests/integration/test_fxaa
-tests_integration_test_fxaa_SOURCES = tests/integration/test_fxaa.c
+tests_integration_test_fxaa_SOURCES = tests/integration/test_fxaa.c $(GPU_TEST_FIXTURE)
 tests_integration_test_fxaa_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_fxaa_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_fxaa

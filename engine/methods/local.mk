@@ -11,13 +11,13 @@ EXTRA_DIST += shaders/shading.glsl shaders/taa_common.glsl shaders/taa_resolve.g
 $(glsl_headers): $(srcdir)/shaders/shading.glsl $(srcdir)/shaders/taa_common.glsl $(srcdir)/shaders/taa_resolve.glsl
 
 check_PROGRAMS += tests/integration/test_analytic_edges
-tests_integration_test_analytic_edges_SOURCES = tests/integration/test_analytic_edges.c
+tests_integration_test_analytic_edges_SOURCES = tests/integration/test_analytic_edges.c $(GPU_TEST_FIXTURE)
 tests_integration_test_analytic_edges_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_analytic_edges_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_analytic_edges
 
 check_PROGRAMS += tests/integration/test_temporal
-tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c
+tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c $(GPU_TEST_FIXTURE)
 tests_integration_test_temporal_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_temporal_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_temporal

@@ -15,7 +15,7 @@ TESTS += tests/unit/test_rsaa_table
 
 # rsaa on the GPU: 8 beats 4 beats none on analytic edges, every parameter mix runs, dense detail stays finite
 check_PROGRAMS += tests/integration/test_rsaa
-tests_integration_test_rsaa_SOURCES = tests/integration/test_rsaa.c
+tests_integration_test_rsaa_SOURCES = tests/integration/test_rsaa.c $(GPU_TEST_FIXTURE)
 tests_integration_test_rsaa_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_rsaa_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_rsaa

@@ -10,7 +10,7 @@ $(patsubst shaders/%,shaders/%.h,$(temporal2_glsl)): $(srcdir)/shaders/asaa_t2ms
 # off-screen velocities are rejected
 check_PROGRAMS += tests/integration/test_temporal_stability_asaa_t2msaa
 tests_integration_test_temporal_stability_asaa_t2msaa_SOURCES = \
-	tests/integration/test_temporal_stability_asaa_t2msaa.c
+	tests/integration/test_temporal_stability_asaa_t2msaa.c $(GPU_TEST_FIXTURE)
 tests_integration_test_temporal_stability_asaa_t2msaa_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_temporal_stability_asaa_t2msaa_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_temporal_stability_asaa_t2msaa

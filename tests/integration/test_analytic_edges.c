@@ -14,13 +14,13 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 #include "reference/exact_coverage.h"
 
 #define SIZE 64
 #define ANGLES 19
 #define TEMPORAL_FRAMES 8
 
-static struct aa_engine *engine;
 static struct aa_job_spec spec;             /* every method: labels and indices of the results */
 static struct aa_job_spec single, temporal; /* the single-frame and the history-keeping methods */
 static int single_index[AA_MAX_METHODS], temporal_index[AA_MAX_METHODS]; /* into spec */
@@ -70,11 +70,7 @@ static void run_pattern(enum aa_pattern2d_kind kind, double angle, double thickn
 		if (jobs[j]->method_count == 0)
 			continue;
 		struct capture c = {coverage, errors, indices[j], jobs[j]->frames - 1};
-		struct aa_job_result *r = NULL;
-		if (aa_job_run_scene(engine, jobs[j], scene, on_event, &c, &r, &err))
-			fail_msg("job failed: %s", err.message);
-		aa_job_result_free(r);
-		free(r);
+		fixture_free(fixture_run(jobs[j], scene, on_event, &c));
 	}
 	aa_scene_free(scene);
 }
@@ -83,8 +79,7 @@ static int setup(void **state)
 {
 	(void)state;
 	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	if (aa_engine_create(&o, &engine, &err))
+	if (fixture_setup(state))
 		return -1;
 	/* every registered method at its defaults, plus the other MSAA counts and the virtual 4x path */
 	const char *extra[] = {"msaa:2", "msaa:8", "msaa:4,path=virtual", "ssaa:4"};
@@ -120,13 +115,6 @@ static int setup(void **state)
 	return 0;
 }
 
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	return errors ? -1 : 0;
-}
 
 static double mean_over(int m, int first_angle, int last_angle)
 {
@@ -207,5 +195,5 @@ int main(void)
 		cmocka_unit_test(test_half_planes),
 		cmocka_unit_test(test_thin_bar),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, setup, fixture_teardown);
 }

@@ -11,69 +11,10 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 #include "reference/exact_coverage.h"
 
-static struct aa_engine *engine;
 
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	if (aa_engine_create(&o, &engine, &err)) {
-		fprintf(stderr, "engine: %s\n", err.message);
-		return -1;
-	}
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	if (errors)
-		fprintf(stderr, "%d Vulkan validation errors\n", errors);
-	return errors ? -1 : 0;
-}
-
-static void make_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n,
-		      int w, int h, int frames, int samples)
-{
-	aa_job_spec_defaults(spec);
-	snprintf(spec->scene, sizeof spec->scene, "%s", scene);
-	spec->width = w;
-	spec->height = h;
-	spec->frames = frames;
-	spec->reference_samples = samples;
-	spec->method_count = n;
-	for (int i = 0; i < n; i++) {
-		struct aa_error err = {0};
-		char path[32];
-		snprintf(path, sizeof path, "methods[%d]", i);
-		assert_int_equal(aa_method_parse(methods[i], path, &spec->methods[i].method,
-						 &spec->methods[i].params, &err), 0);
-		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
-				sizeof spec->methods[i].label);
-	}
-}
-
-static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa_scene *scene,
-				 aa_event_fn fn, void *user)
-{
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	int rc = aa_job_run_scene(engine, spec, scene, fn, user, &r, &err);
-	if (rc)
-		fail_msg("job failed: %s: %s", err.path, err.message);
-	return r;
-}
-
-static void free_result(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
-}
 
 static bool plan_ran(const struct aa_job_result *r, const char *pass)
 {
@@ -96,8 +37,8 @@ static void test_every_scene_every_method_finite(void **state)
 		methods[i] = aa_methods[i]->name;
 	for (int s = 0; s < count; s++) {
 		struct aa_job_spec spec;
-		make_spec(&spec, names[s], methods, aa_method_count, 64, 36, 2, 4);
-		struct aa_job_result *r = run(&spec, NULL, NULL, NULL);
+		fixture_spec(&spec, names[s], methods, aa_method_count, 64, 36, 2, 4);
+		struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
 		for (int f = 0; f < r->reference.frame_count; f++)
 			assert_int_equal(r->reference.frames[f].nonfinite, 0);
 		for (int m = 0; m < r->method_count; m++) {
@@ -112,7 +53,7 @@ static void test_every_scene_every_method_finite(void **state)
 			}
 		}
 		printf("  %-16s ok (%llu triangles)\n", names[s], (unsigned long long)r->scene_triangles);
-		free_result(r);
+		fixture_free(r);
 		free(names[s]);
 	}
 	free(names);
@@ -130,8 +71,8 @@ static void test_plan_skips_what_is_not_needed(void **state)
 	assert_int_equal(aa_scene_from_polygons(polys, n, 32, 32, fg, bg, &scene, &err), 0);
 	const char *methods[] = {"none"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "half-plane", methods, 1, 32, 32, 1, 2);
-	struct aa_job_result *r = run(&spec, scene, NULL, NULL);
+	fixture_spec(&spec, "half-plane", methods, 1, 32, 32, 1, 2);
+	struct aa_job_result *r = fixture_run(&spec, scene, NULL, NULL);
 	assert_true(plan_ran(r, "scene-forward"));
 	assert_true(plan_ran(r, "reference-accumulate"));
 	const char *skipped[] = {"shadow-map", "alpha-test", "velocity", "model-ids", "history",
@@ -142,7 +83,7 @@ static void test_plan_skips_what_is_not_needed(void **state)
 	/* the method's passes are exactly its scene render: no shadow map was drawn */
 	assert_int_equal(r->methods[0].frames[0].pass_count, 1);
 	assert_string_equal(r->methods[0].frames[0].passes[0].name, "scene");
-	free_result(r);
+	fixture_free(r);
 	aa_scene_free(scene);
 
 	/* and a scene whose light casts shadows gets the shadow map, in every method's passes */
@@ -159,11 +100,11 @@ static void test_plan_skips_what_is_not_needed(void **state)
 		aa_scene_free(sc);
 		if (!found)
 			continue;
-		make_spec(&spec, names[s], methods, 1, 32, 18, 1, 2);
-		r = run(&spec, NULL, NULL, NULL);
+		fixture_spec(&spec, names[s], methods, 1, 32, 18, 1, 2);
+		r = fixture_run(&spec, NULL, NULL, NULL);
 		assert_true(plan_ran(r, "shadow-map"));
 		assert_string_equal(r->methods[0].frames[0].passes[0].name, "shadow-map");
-		free_result(r);
+		fixture_free(r);
 	}
 	for (int s = 0; s < count; s++)
 		free(names[s]);
@@ -227,8 +168,8 @@ static void test_reference_converges_to_exact_coverage(void **state)
 		for (int k = 0; k < 4; k++) {
 			const char *methods[] = {"none"};
 			struct aa_job_spec spec;
-			make_spec(&spec, patterns[p].name, methods, 1, w, h, 1, sample_counts[k]);
-			free_result(run(&spec, scene, capture_reference, &c));
+			fixture_spec(&spec, patterns[p].name, methods, 1, w, h, 1, sample_counts[k]);
+			fixture_free(fixture_run(&spec, scene, capture_reference, &c));
 			errors[k] = c.mean_abs_error;
 			printf("  N=%-3d %.5f", sample_counts[k], errors[k]);
 		}
@@ -250,14 +191,14 @@ static void test_ssaa_beats_none(void **state)
 	(void)state;
 	const char *methods[] = {"none", "ssaa:16"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "thin-wires", methods, 2, 160, 90, 1, 32);
-	struct aa_job_result *r = run(&spec, NULL, NULL, NULL);
+	fixture_spec(&spec, "thin-wires", methods, 2, 160, 90, 1, 32);
+	struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
 	double none = r->methods[0].frames[0].metrics.psnr, ssaa = r->methods[1].frames[0].metrics.psnr;
 	printf("  thin-wires 160x90: none %.2f dB, ssaa:16 %.2f dB, convergence %.2f dB\n", none, ssaa,
 	       r->reference.frames[0].convergence_psnr);
 	assert_true(ssaa > none + 3.0);
 	assert_true(r->methods[1].memory_bytes > r->methods[0].memory_bytes);
-	free_result(r);
+	fixture_free(r);
 }
 
 int main(void)
@@ -268,5 +209,5 @@ int main(void)
 		cmocka_unit_test(test_ssaa_beats_none),
 		cmocka_unit_test(test_every_scene_every_method_finite),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

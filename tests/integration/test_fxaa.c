@@ -13,68 +13,10 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 #include "reference/exact_coverage.h"
 
-static struct aa_engine *engine;
 
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	if (aa_engine_create(&o, &engine, &err)) {
-		fprintf(stderr, "engine: %s\n", err.message);
-		return -1;
-	}
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	if (errors)
-		fprintf(stderr, "%d Vulkan validation errors\n", errors);
-	return errors ? -1 : 0;
-}
-
-static void make_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n,
-		      int w, int h, int frames, int samples)
-{
-	aa_job_spec_defaults(spec);
-	snprintf(spec->scene, sizeof spec->scene, "%s", scene);
-	spec->width = w;
-	spec->height = h;
-	spec->frames = frames;
-	spec->reference_samples = samples;
-	spec->method_count = n;
-	for (int i = 0; i < n; i++) {
-		struct aa_error err = {0};
-		char path[32];
-		snprintf(path, sizeof path, "methods[%d]", i);
-		if (aa_method_parse(methods[i], path, &spec->methods[i].method, &spec->methods[i].params, &err))
-			fail_msg("%s: %s", methods[i], err.message);
-		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
-				sizeof spec->methods[i].label);
-	}
-}
-
-static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa_scene *scene,
-				 aa_event_fn fn, void *user)
-{
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	if (aa_job_run_scene(engine, spec, scene, fn, user, &r, &err))
-		fail_msg("job failed: %s: %s", err.path, err.message);
-	return r;
-}
-
-static void free_result(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
-}
 
 /* The 8-bit images of every method and frame, as scored and written to PNG. */
 #define MAX_CAPTURED 8
@@ -148,10 +90,10 @@ static void test_fxaa_cs_matches_fxaa(void **state)
 		/* two frames of the first case (the second reuses the method's resources), one of the others */
 		int frames = k == 0 ? 2 : 1;
 		struct aa_job_spec spec;
-		make_spec(&spec, cases[k].scene, methods, 3, cases[k].w, cases[k].h, frames, 2);
+		fixture_spec(&spec, cases[k].scene, methods, 3, cases[k].w, cases[k].h, frames, 2);
 		spec.first_frame = 3; /* a frame where the moving scenes have moved */
 		struct capture c = {0};
-		free_result(run(&spec, NULL, capture_frame, &c));
+		fixture_free(fixture_run(&spec, NULL, capture_frame, &c));
 		for (int f = 0; f < frames; f++) {
 			uint8_t *const *img = c.image[f];
 			assert_non_null(img[0]);
@@ -192,8 +134,8 @@ static void test_fxaa_beats_none_on_hard_edges(void **state)
 	(void)state;
 	const char *methods[] = {"none", "fxaa", "fxaa-cs", "fxaa:preset=10", "fxaa:preset=29", "fxaa:preset=39"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "hard-edges", methods, 6, 320, 180, 1, 32);
-	struct aa_job_result *r = run(&spec, NULL, NULL, NULL);
+	fixture_spec(&spec, "hard-edges", methods, 6, 320, 180, 1, 32);
+	struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
 	double none = frame0(r, 0)->metrics.psnr;
 	for (int m = 1; m < r->method_count; m++) {
 		double psnr = frame0(r, m)->metrics.psnr;
@@ -214,7 +156,7 @@ static void test_fxaa_beats_none_on_hard_edges(void **state)
 	uint64_t px = 320 * 180;
 	assert_true(r->methods[1].memory_bytes >= r->methods[0].memory_bytes + 12 * px);
 	assert_true(r->methods[2].memory_bytes >= r->methods[1].memory_bytes + 4 * px);
-	free_result(r);
+	fixture_free(r);
 }
 
 struct coverage_capture {
@@ -280,9 +222,9 @@ static void test_fxaa_half_plane_coverage(void **state)
 		float fg[3] = {1, 1, 1}, bg[3] = {0, 0, 0};
 		assert_int_equal(aa_scene_from_polygons(polys, n, w, h, fg, bg, &scene, &err), 0);
 		struct aa_job_spec spec;
-		make_spec(&spec, "half-plane", methods, 4, w, h, 1, 2);
+		fixture_spec(&spec, "half-plane", methods, 4, w, h, 1, 2);
 		struct coverage_capture c = {.coverage = coverage};
-		free_result(run(&spec, scene, capture_coverage, &c));
+		fixture_free(fixture_run(&spec, scene, capture_coverage, &c));
 		printf("  %-5.0f", cases[a].angle);
 		for (int m = 0; m < 4; m++)
 			printf(" %.4f (%.4f)", c.srgb_error[m], c.linear_error[m]);
@@ -349,5 +291,5 @@ int main(void)
 		cmocka_unit_test(test_fxaa_half_plane_coverage),
 		cmocka_unit_test(test_fxaa_cs_matches_fxaa),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

@@ -12,70 +12,13 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 #include "reference/exact_coverage.h"
 
 #define SIZE 64
 #define ANGLES 19
 
-static struct aa_engine *engine;
 
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	if (aa_engine_create(&o, &engine, &err)) {
-		fprintf(stderr, "engine: %s\n", err.message);
-		return -1;
-	}
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	if (errors)
-		fprintf(stderr, "%d Vulkan validation errors\n", errors);
-	return errors ? -1 : 0;
-}
-
-static void make_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n, int w,
-		      int h, int reference_samples)
-{
-	aa_job_spec_defaults(spec);
-	if (scene)
-		snprintf(spec->scene, sizeof spec->scene, "%s", scene);
-	spec->width = w;
-	spec->height = h;
-	spec->frames = 1;
-	spec->reference_samples = reference_samples;
-	spec->method_count = n;
-	for (int i = 0; i < n; i++) {
-		struct aa_error err = {0};
-		assert_int_equal(aa_method_parse(methods[i], "methods", &spec->methods[i].method,
-						 &spec->methods[i].params, &err), 0);
-		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
-				sizeof spec->methods[i].label);
-	}
-}
-
-static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa_scene *scene, aa_event_fn fn,
-				 void *user)
-{
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	if (aa_job_run_scene(engine, spec, scene, fn, user, &r, &err))
-		fail_msg("job failed: %s: %s", err.path, err.message);
-	return r;
-}
-
-static void free_result(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
-}
 
 struct coverage_capture {
 	const double *coverage;
@@ -101,7 +44,7 @@ static void test_half_planes_8_beats_4_beats_none(void **state)
 				 "msaa:8"};
 	const int n = (int)(sizeof methods / sizeof methods[0]);
 	struct aa_job_spec spec;
-	make_spec(&spec, NULL, methods, n, SIZE, SIZE, 2);
+	fixture_spec(&spec, NULL, methods, n, SIZE, SIZE, 1, 2);
 	double mean[AA_MAX_METHODS] = {0};
 	for (int a = 0; a < ANGLES; a++) {
 		struct aa_polygon2d polys[16];
@@ -113,7 +56,7 @@ static void test_half_planes_8_beats_4_beats_none(void **state)
 		float fg[3] = {1, 1, 1}, bg[3] = {0, 0, 0};
 		assert_int_equal(aa_scene_from_polygons(polys, count, SIZE, SIZE, fg, bg, &scene, &err), 0);
 		struct coverage_capture c = {coverage, {0}};
-		free_result(run(&spec, scene, on_coverage, &c));
+		fixture_free(fixture_run(&spec, scene, on_coverage, &c));
 		aa_scene_free(scene);
 		for (int m = 0; m < n; m++)
 			mean[m] += c.errors[m] / ANGLES;
@@ -135,8 +78,8 @@ static void test_every_mix_runs(void **state)
 				 "rsaa:8,similarity=sadp,auth=1", "rsaa:8,similarity=depth,auth=2", "none"};
 	const int n = (int)(sizeof methods / sizeof methods[0]);
 	struct aa_job_spec spec;
-	make_spec(&spec, "hard-edges", methods, n, 96, 64, 16);
-	struct aa_job_result *r = run(&spec, NULL, NULL, NULL);
+	fixture_spec(&spec, "hard-edges", methods, n, 96, 64, 1, 16);
+	struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
 	for (int m = 0; m < n; m++) {
 		const struct aa_frame_result *f = &r->methods[m].frames[0];
 		printf("  %-32s %6.2f dB  %s\n", r->methods[m].label, f->metrics.psnr, r->methods[m].path_taken);
@@ -144,7 +87,7 @@ static void test_every_mix_runs(void **state)
 		assert_true(isfinite(f->metrics.psnr));
 	}
 	assert_non_null(strstr(r->methods[0].path_taken, "virtual samples"));
-	free_result(r);
+	fixture_free(r);
 	/* bad values are refused with the parameter named */
 	const struct aa_method *m;
 	struct aa_method_params p;
@@ -192,16 +135,16 @@ static void test_dense_detail_stays_in_range(void **state)
 	(void)state;
 	const char *methods[] = {"none", "rsaa:8", "msaa:8"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "hairball", methods, 3, 128, 72, 16);
+	fixture_spec(&spec, "hairball", methods, 3, 128, 72, 1, 16);
 	struct range_capture c = {.none = 0, .rsaa = 1};
-	struct aa_job_result *r = run(&spec, NULL, on_range, &c);
+	struct aa_job_result *r = fixture_run(&spec, NULL, on_range, &c);
 	printf("  hairball 128x72: none %.2f dB, rsaa:8 %.2f dB, msaa:8 %.2f dB; out of range %ld, NaN/Inf %ld\n",
 	       r->methods[0].frames[0].metrics.psnr, r->methods[1].frames[0].metrics.psnr,
 	       r->methods[2].frames[0].metrics.psnr, c.out_of_range, c.nonfinite);
 	assert_int_equal(c.nonfinite, 0);
 	assert_int_equal(c.out_of_range, 0);
 	assert_int_equal(r->methods[1].frames[0].nonfinite, 0);
-	free_result(r);
+	fixture_free(r);
 }
 
 int main(void)
@@ -211,5 +154,5 @@ int main(void)
 		cmocka_unit_test(test_every_mix_runs),
 		cmocka_unit_test(test_dense_detail_stays_in_range),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

@@ -11,66 +11,10 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 #include "reference/exact_coverage.h"
 
-static struct aa_engine *engine;
 
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	if (aa_engine_create(&o, &engine, &err)) {
-		fprintf(stderr, "engine: %s\n", err.message);
-		return -1;
-	}
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	if (errors)
-		fprintf(stderr, "%d Vulkan validation errors\n", errors);
-	return errors ? -1 : 0;
-}
-
-static void make_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n, int w,
-		      int h, int samples)
-{
-	aa_job_spec_defaults(spec);
-	snprintf(spec->scene, sizeof spec->scene, "%s", scene);
-	spec->width = w;
-	spec->height = h;
-	spec->frames = 1;
-	spec->reference_samples = samples;
-	spec->method_count = n;
-	for (int i = 0; i < n; i++) {
-		struct aa_error err = {0};
-		if (aa_method_parse(methods[i], "methods", &spec->methods[i].method, &spec->methods[i].params, &err))
-			fail_msg("%s: %s", methods[i], err.message);
-		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
-				sizeof spec->methods[i].label);
-	}
-}
-
-static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa_scene *scene, aa_event_fn fn,
-				 void *user)
-{
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	if (aa_job_run_scene(engine, spec, scene, fn, user, &r, &err))
-		fail_msg("job failed: %s: %s", err.path, err.message);
-	return r;
-}
-
-static void free_result(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
-}
 
 static void test_parameters(void **state)
 {
@@ -115,8 +59,8 @@ static void test_hard_edges(void **state)
 				 "smaa:edge=color", "smaa:edge=depth"};
 	const int n = (int)(sizeof methods / sizeof methods[0]);
 	struct aa_job_spec spec;
-	make_spec(&spec, "hard-edges", methods, n, 160, 90, 32);
-	struct aa_job_result *r = run(&spec, NULL, NULL, NULL);
+	fixture_spec(&spec, "hard-edges", methods, n, 160, 90, 1, 32);
+	struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
 	double none = r->methods[0].frames[0].metrics.psnr;
 	printf("  hard-edges 160x90: none %.2f dB\n", none);
 	for (int i = 1; i < n; i++) {
@@ -146,7 +90,7 @@ static void test_hard_edges(void **state)
 		assert_non_null(find_memory(m, "edge queue"));
 		assert_true(m->memory_bytes > r->methods[0].memory_bytes + 160 * 90 * (2 + 4 + 8));
 	}
-	free_result(r);
+	fixture_free(r);
 }
 
 struct capture {
@@ -193,9 +137,9 @@ static struct capture run_half_plane(double angle)
 	assert_int_equal(aa_scene_from_polygons(polys, n, SIZE, SIZE, fg, bg, &scene, &err), 0);
 	const char *methods[] = {"none", "smaa"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "half-plane", methods, 2, SIZE, SIZE, 2);
+	fixture_spec(&spec, "half-plane", methods, 2, SIZE, SIZE, 1, 2);
 	struct capture c = {.coverage = coverage, .size = SIZE, .none = none};
-	free_result(run(&spec, scene, on_frame, &c));
+	fixture_free(fixture_run(&spec, scene, on_frame, &c));
 	aa_scene_free(scene);
 	return c;
 }
@@ -242,5 +186,5 @@ int main(void)
 		cmocka_unit_test(test_slanted_edges),
 		cmocka_unit_test(test_aligned_edge_untouched),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

@@ -11,45 +11,16 @@
 #include <cmocka.h>
 
 #include "aa.h"
+#include "fixture.h"
 
-static struct aa_engine *engine;
 static const char *const temporal[] = {"taa", "taa-sobel"};
-
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	return aa_engine_create(&o, &engine, &err);
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	return errors ? -1 : 0;
-}
 
 static void make_spec(struct aa_job_spec *spec, const char *scene, const char *path, const char *const *methods,
 		      int n, int w, int h, int first, int frames, int samples)
 {
-	aa_job_spec_defaults(spec);
-	snprintf(spec->scene, sizeof spec->scene, "%s", scene);
+	fixture_spec(spec, scene, methods, n, w, h, frames, samples);
 	snprintf(spec->path, sizeof spec->path, "%s", path);
-	spec->width = w;
-	spec->height = h;
 	spec->first_frame = first;
-	spec->frames = frames;
-	spec->reference_samples = samples;
-	spec->method_count = n;
-	for (int i = 0; i < n; i++) {
-		struct aa_error err = {0};
-		assert_int_equal(aa_method_parse(methods[i], "methods", &spec->methods[i].method,
-						 &spec->methods[i].params, &err), 0);
-		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
-				sizeof spec->methods[i].label);
-	}
 }
 
 /* Keeps a copy of every method's 8-bit output per frame. */
@@ -77,17 +48,7 @@ static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa
 		f->h = spec->height;
 		f->pixels = calloc((size_t)f->count * f->methods, (size_t)f->w * f->h * 4);
 	}
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	if (aa_job_run_scene(engine, spec, scene, f ? keep_frames : NULL, f, &r, &err))
-		fail_msg("job failed: %s: %s", err.path, err.message);
-	return r;
-}
-
-static void free_result(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
+	return fixture_run(spec, scene, f ? keep_frames : NULL, f);
 }
 
 /* (a) one frame of NaN/+Inf shading: no NaN/Inf in any output, and two frames later the image is back
@@ -111,8 +72,8 @@ static void test_nonfinite_never_reaches_history(void **state)
 				assert_true(fabs(a - b) < 1.0);
 			}
 		}
-	free_result(clean);
-	free_result(poisoned);
+	fixture_free(clean);
+	fixture_free(poisoned);
 }
 
 /* (c) the first frame after a camera cut equals a fresh start at that frame: no trace of the old view. */
@@ -123,9 +84,9 @@ static void test_cut_resets_history(void **state)
 	struct aa_job_spec spec;
 	struct frames across = {0}, fresh = {0};
 	make_spec(&spec, "thin-wires", "fly", temporal, 2, 96, 54, 86, 6, 2);
-	free_result(run(&spec, NULL, &across));
+	fixture_free(run(&spec, NULL, &across));
 	make_spec(&spec, "thin-wires", "fly", temporal, 2, 96, 54, 90, 1, 2);
-	free_result(run(&spec, NULL, &fresh));
+	fixture_free(run(&spec, NULL, &fresh));
 	size_t size = 96 * 54 * 4;
 	for (int m = 0; m < 2; m++) {
 		const uint8_t *a = across.pixels + ((size_t)4 * 2 + m) * size, *b = fresh.pixels + (size_t)m * size;
@@ -187,7 +148,7 @@ static void test_offscreen_history_rejected(void **state)
 	for (int m = 0; m < 3; m++)
 		for (int t = 0; t < 6; t++)
 			assert_int_equal(r->methods[m].frames[t].nonfinite, 0);
-	free_result(r);
+	fixture_free(r);
 	free(f.pixels);
 	aa_scene_free(scene);
 }
@@ -206,7 +167,7 @@ static void test_static_thin_wires(void **state)
 		printf("  thin-wires static 640x360, frame 15: none %.2f dB, %s %.2f dB\n", none, methods[m], p);
 		assert_true(p > none + 3.0);
 	}
-	free_result(r);
+	fixture_free(r);
 }
 
 int main(void)
@@ -217,5 +178,5 @@ int main(void)
 		cmocka_unit_test(test_offscreen_history_rejected),
 		cmocka_unit_test(test_static_thin_wires),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

@@ -17,8 +17,8 @@
 #include <jansson.h>
 
 #include "aa.h"
+#include "fixture.h"
 
-static struct aa_engine *engine;
 static const char *const methods[] = {"asaa", "t2msaa"};
 #define METHODS 2
 #define MAX_KEEP 8
@@ -86,17 +86,7 @@ static void spec_init(struct aa_job_spec *spec, const char *scene, const char *p
 
 static struct aa_job_result *run(const struct aa_job_spec *spec, struct capture *c)
 {
-	struct aa_error err = {0};
-	struct aa_job_result *r = NULL;
-	if (aa_job_run(engine, spec, on_event, c, &r, &err))
-		fail_msg("job failed: %s (%s)", err.message, err.path);
-	return r;
-}
-
-static void result_free(struct aa_job_result *r)
-{
-	aa_job_result_free(r);
-	free(r);
+	return fixture_run(spec, NULL, on_event, c);
 }
 
 static double now_s(void)
@@ -104,22 +94,6 @@ static double now_s(void)
 	struct timespec t;
 	clock_gettime(CLOCK_MONOTONIC, &t);
 	return (double)t.tv_sec + t.tv_nsec / 1e9;
-}
-
-static int setup(void **state)
-{
-	(void)state;
-	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
-	return aa_engine_create(&o, &engine, &err);
-}
-
-static int teardown(void **state)
-{
-	(void)state;
-	int errors = aa_engine_validation_errors(engine);
-	aa_engine_destroy(engine);
-	return errors ? -1 : 0;
 }
 
 /* (a) frame 3's shading emits NaN and +Inf in a sparse pattern; the objects move, so history is used */
@@ -142,8 +116,8 @@ static void test_nonfinite_injection(void **state)
 			assert_true(fabs(a - b) < 0.5);
 		}
 	}
-	result_free(clean);
-	result_free(hit);
+	fixture_free(clean);
+	fixture_free(hit);
 }
 
 /* (b) a still camera over thin wires, 2,000 frames at 48x27: the reference is rendered once */
@@ -169,7 +143,7 @@ static void test_still_camera_long_run(void **state)
 		assert_true(hi - at100 <= 0.5 && at100 - lo <= 0.5);
 		assert_true(at100 > fr[0].metrics.psnr); /* accumulation helped and did not stall at frame 0 */
 	}
-	result_free(r);
+	fixture_free(r);
 }
 
 static double max_abs_diff(const float *a, const float *b, int n)
@@ -189,11 +163,11 @@ static void test_cut_resets_history(void **state)
 	spec_init(&spec, "thin-wires", "fly", 64, 36, 8, 4, methods, METHODS);
 	spec.first_frame = 84;
 	struct capture through = {.keep_from = 6, .keep_count = 2};
-	result_free(run(&spec, &through));
+	fixture_free(run(&spec, &through));
 	spec.first_frame = 90;
 	spec.frames = 2;
 	struct capture fresh = {.keep_from = 0, .keep_count = 2};
-	result_free(run(&spec, &fresh));
+	fixture_free(run(&spec, &fresh));
 	for (int m = 0; m < METHODS; m++)
 		for (int k = 0; k < 2; k++) {
 			assert_non_null(through.image[m][k]);
@@ -251,7 +225,7 @@ static void test_offscreen_velocity_rejected(void **state)
 	const int w = 96, h = 54;
 	spec_init(&spec, path, "whip", w, h, 8, 8, names, 3);
 	struct capture c = {.keep_from = 2, .keep_count = 6};
-	result_free(run(&spec, &c));
+	fixture_free(run(&spec, &c));
 	double err[3] = {0};
 	for (int m = 0; m < 3; m++)
 		for (int k = 0; k < c.keep_count; k++) /* both edges, 8 px: the entering strip is on one of them */
@@ -273,5 +247,5 @@ int main(void)
 		cmocka_unit_test(test_offscreen_velocity_rejected),
 		cmocka_unit_test(test_still_camera_long_run),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

@@ -1,0 +1,71 @@
+/* Shared set-up of the GPU integration tests (see fixture.h). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <cmocka.h>
+
+#include "fixture.h"
+
+struct aa_engine *fixture_engine;
+
+int fixture_setup(void **state)
+{
+	(void)state;
+	struct aa_error err = {0};
+	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
+	if (aa_engine_create(&o, &fixture_engine, &err)) {
+		fprintf(stderr, "engine: %s\n", err.message);
+		return -1;
+	}
+	return 0;
+}
+
+int fixture_teardown(void **state)
+{
+	(void)state;
+	int errors = aa_engine_validation_errors(fixture_engine);
+	aa_engine_destroy(fixture_engine);
+	if (errors)
+		fprintf(stderr, "%d Vulkan validation errors\n", errors);
+	return errors ? -1 : 0;
+}
+
+void fixture_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n, int width,
+		  int height, int frames, int reference_samples)
+{
+	aa_job_spec_defaults(spec);
+	if (scene)
+		snprintf(spec->scene, sizeof spec->scene, "%s", scene);
+	spec->width = width;
+	spec->height = height;
+	spec->frames = frames;
+	spec->reference_samples = reference_samples;
+	spec->method_count = n;
+	for (int i = 0; i < n; i++) {
+		struct aa_error err = {0};
+		char path[32];
+		snprintf(path, sizeof path, "methods[%d]", i);
+		if (aa_method_parse(methods[i], path, &spec->methods[i].method, &spec->methods[i].params, &err))
+			fail_msg("%s: %s", methods[i], err.message);
+		aa_method_label(spec->methods[i].method, &spec->methods[i].params, spec->methods[i].label,
+				sizeof spec->methods[i].label);
+	}
+}
+
+struct aa_job_result *fixture_run(const struct aa_job_spec *spec, const struct aa_scene *scene, aa_event_fn fn,
+				  void *user)
+{
+	struct aa_job_result *r = NULL;
+	struct aa_error err = {0};
+	if (aa_job_run_scene(fixture_engine, spec, scene, fn, user, &r, &err))
+		fail_msg("job failed: %s: %s", err.path, err.message);
+	return r;
+}
+
+void fixture_free(struct aa_job_result *r)
+{
+	aa_job_result_free(r);
+	free(r);
+}

@@ -1,0 +1,21 @@
+/* Shared set-up of the GPU integration tests: one engine per test program (validation on when
+ * $AALAB_VALIDATION is set; teardown fails on any validation error), job specs from method strings, and
+ * job runs that fail the test with the engine's message. */
+#ifndef AA_TEST_FIXTURE_H
+#define AA_TEST_FIXTURE_H
+
+#include "aa.h"
+
+extern struct aa_engine *fixture_engine;
+
+int fixture_setup(void **state);
+int fixture_teardown(void **state);
+/* A job of `n` methods (strings as on the command line) on a scene name, default path, from frame 0. */
+void fixture_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n, int width,
+		  int height, int frames, int reference_samples);
+/* Runs a job (scene NULL: load spec->scene); fails the current test when the job fails. */
+struct aa_job_result *fixture_run(const struct aa_job_spec *spec, const struct aa_scene *scene, aa_event_fn fn,
+				  void *user);
+void fixture_free(struct aa_job_result *r);
+
+#endif
