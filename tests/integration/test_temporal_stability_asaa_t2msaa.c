@@ -184,9 +184,10 @@ static void test_cut_resets_history(void **state)
  * per frame): a strip of pixels enters the view every frame, with velocities pointing off-screen. */
 static void write_whip_scene(const char *path)
 {
-	const char *dir = getenv("AALAB_SCENE_DIR");
 	char src[1024];
-	snprintf(src, sizeof src, "%s/thin-wires.json", dir ? dir : "scenes");
+	struct aa_error err = {0};
+	if (aa_scene_resolve("thin-wires", src, sizeof src, &err))
+		fail_msg("%s", err.message);
 	json_error_t je;
 	json_t *scene = json_load_file(src, 0, &je);
 	if (!scene)
