@@ -28,16 +28,29 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
 		r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
 		r->reference.samples, conv, r->device_name);
-	fprintf(out, "%-24s %12s %10s %9s %10s %8s\n", "method", "GPU ms/frame", "p90 ms", "MB", "PSNR dB",
-		"SSIM");
+	bool sequence = r->spec.frames > 1;
+	fprintf(out, "%-24s %12s %10s %9s %10s %8s", "method", "GPU ms/frame", "p90 ms", "MB", "PSNR dB", "SSIM");
+	if (sequence) /* per-sequence figures: worst and best frame (index), and the temporal stability figure */
+		fprintf(out, " %16s %16s %8s", "worst dB (frame)", "best dB (frame)", "flicker");
+	fputc('\n', out);
 	for (int i = 0; i < r->method_count; i++) {
 		const struct aa_method_result *m = &r->methods[i];
 		struct aa_method_summary s;
 		aa_method_summarize(m, &s);
 		char psnr[32];
 		format_psnr(s.psnr_mean, s.psnr_identical, psnr, sizeof psnr);
-		fprintf(out, "%-24s %12.2f %10.2f %9.1f %10s %8.4f\n", m->label, s.gpu_ms_median, s.gpu_ms_p90,
+		fprintf(out, "%-24s %12.2f %10.2f %9.1f %10s %8.4f", m->label, s.gpu_ms_median, s.gpu_ms_p90,
 			m->memory_bytes / (1024.0 * 1024.0), psnr, s.ssim_mean);
+		if (sequence) {
+			char worst[32], best[32], text[48];
+			format_psnr(s.worst_psnr, false, worst, sizeof worst);
+			format_psnr(s.best_psnr, isnan(s.best_psnr), best, sizeof best);
+			snprintf(text, sizeof text, "%s (%d)", worst, s.worst_frame);
+			fprintf(out, " %16s", text);
+			snprintf(text, sizeof text, "%s (%d)", best, s.best_frame);
+			fprintf(out, " %16s %8.3f", text, s.flicker_mean);
+		}
+		fputc('\n', out);
 	}
 }
 

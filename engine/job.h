@@ -71,6 +71,8 @@ struct aa_frame_result {
 	double cpu_ms;             /* wall time of record + submit + wait for this method's frame */
 	struct aa_metrics metrics; /* against this frame's reference */
 	long nonfinite;            /* NaN/Inf values found in the method's float output (must be 0) */
+	double flicker;            /* mean |(m[t] - m[t-1]) - (r[t] - r[t-1])| over pixels and R,G,B, 8-bit
+				    * units: change between frames the reference does not have; NAN at frame 0 */
 };
 
 struct aa_method_result {
@@ -137,6 +139,7 @@ struct aa_method_summary {
 	double psnr_mean;          /* from mse_mean; NAN if every frame identical */
 	bool psnr_identical;
 	double ssim_mean;
+	double flicker_mean;       /* over frames 1.., NAN for one frame */
 	int best_frame, worst_frame; /* by PSNR (identical counts as best) */
 	double best_psnr, worst_psnr;
 };

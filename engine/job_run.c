@@ -71,6 +71,7 @@ struct job_state {
 	struct aa_gpu_buffer readback;
 	struct aa_image_rgbaf full, half, output;
 	struct aa_image_rgba8 ref8, half8, out8, diff8, flip8;
+	struct aa_image_rgba8 prev_ref8, prev_out8[AA_MAX_METHODS]; /* the previous frame, for flicker */
 	struct aa_job_result *result;
 };
 
@@ -95,6 +96,9 @@ static void job_state_free(struct job_state *js)
 	aa_image_rgba8_free(&js->out8);
 	aa_image_rgba8_free(&js->diff8);
 	aa_image_rgba8_free(&js->flip8);
+	aa_image_rgba8_free(&js->prev_ref8);
+	for (int i = 0; i < AA_MAX_METHODS; i++)
+		aa_image_rgba8_free(&js->prev_out8[i]);
 }
 
 static int emit(aa_event_fn fn, void *user, struct aa_event *ev, struct aa_error *err)
@@ -166,14 +170,36 @@ static int setup(struct job_state *js, struct aa_error *err)
 	if (aa_image_rgbaf_alloc(&js->full, w, h) || aa_image_rgbaf_alloc(&js->half, w, h) ||
 	    aa_image_rgbaf_alloc(&js->output, w, h) || aa_image_rgba8_alloc(&js->ref8, w, h) ||
 	    aa_image_rgba8_alloc(&js->half8, w, h) || aa_image_rgba8_alloc(&js->out8, w, h) ||
-	    aa_image_rgba8_alloc(&js->diff8, w, h) || aa_image_rgba8_alloc(&js->flip8, w, h))
+	    aa_image_rgba8_alloc(&js->diff8, w, h) || aa_image_rgba8_alloc(&js->flip8, w, h) ||
+	    (spec->frames > 1 && aa_image_rgba8_alloc(&js->prev_ref8, w, h)))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
+	for (int i = 0; spec->frames > 1 && i < spec->method_count; i++)
+		if (aa_image_rgba8_alloc(&js->prev_out8[i], w, h))
+			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
 	return 0;
+}
+
+/* Temporal stability: the mean over pixels and R,G,B of |(m[t] - m[t-1]) - (r[t] - r[t-1])|, the change
+ * between frames that the reference does not have (8-bit units). */
+static double flicker(const struct aa_image_rgba8 *m, const struct aa_image_rgba8 *m_prev,
+		      const struct aa_image_rgba8 *r, const struct aa_image_rgba8 *r_prev)
+{
+	size_t n = (size_t)m->width * m->height;
+	uint64_t sum = 0;
+	for (size_t i = 0; i < n * 4; i++) {
+		if ((i & 3) == 3)
+			continue;
+		int d = ((int)m->pixels[i] - m_prev->pixels[i]) - ((int)r->pixels[i] - r_prev->pixels[i]);
+		sum += (uint64_t)abs(d);
+	}
+	return (double)sum / (double)(n * 3);
 }
 
 static int render_reference(struct job_state *js, int ordinal, bool reuse, struct aa_error *err)
 {
 	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
+	if (js->prev_ref8.pixels)
+		memcpy(js->prev_ref8.pixels, js->ref8.pixels, (size_t)js->ref8.width * js->ref8.height * 4);
 	if (reuse) {
 		/* a held camera over a scene where nothing moves: every frame's reference is the first one */
 		*rf = js->result->reference.frames[0];
@@ -257,6 +283,12 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	    aa_metrics_perceptual(&js->ref8, &js->out8, &fr->metrics, &js->flip8, err))
 		return -1;
 	diff_image(&js->ref8, &js->out8, &js->diff8);
+	fr->flicker = NAN;
+	if (js->prev_out8[i].pixels) {
+		if (ctx->ordinal > 0)
+			fr->flicker = flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
+		memcpy(js->prev_out8[i].pixels, js->out8.pixels, (size_t)ctx->width * ctx->height * 4);
+	}
 	js->result->methods[i].frame_count = ctx->ordinal + 1;
 	return 0;
 }

@@ -494,7 +494,9 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 	      "<th class=\"n\">GPU ms<br>p90</th><th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
 	      "<th class=\"n\">PSNR dB<br>mean</th><th class=\"n\">PSNR dB<br>worst frame</th><th class=\"n\">SSIM<br>mean</th>"
 	      "<th class=\"n\" title=\"perceived difference when flipping between method and reference, 0 = none\">"
-	      "FLIP<br>mean</th></tr>\n",
+	      "FLIP<br>mean</th>"
+	      "<th class=\"n\" title=\"mean |change between frames - the reference's change|, 8-bit levels\">"
+	      "Flicker<br>mean</th></tr>\n",
 	      o);
 	for (int i = 0; i < r->method_count; i++) {
 		const struct aa_method_summary *s = &sum[i];
@@ -522,6 +524,8 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		put_num(o, s->ssim_mean, 4);
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, flip_mean(&r->methods[i]), 4);
+		fputs("</td><td class=\"n\">", o);
+		put_num(o, s->flicker_mean, 3);
 		fputs("</td></tr>\n", o);
 	}
 	fputs("</table>\n", o);

@@ -181,6 +181,7 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "passes", passes);
 	put_psnr(b, obj, "psnr", "identical", frame_psnr(&f->metrics), f->metrics.identical);
 	put(b, obj, "ssim", num(f->metrics.ssim));
+	put(b, obj, "flicker", num(f->flicker));
 	put(b, obj, "mse", num(f->metrics.identical ? 0.0 : f->metrics.mse));
 	put(b, obj, "rmsd", num(f->metrics.identical ? 0.0 : f->metrics.rmsd));
 	put(b, obj, "snr", f->metrics.identical ? json_null() : num(f->metrics.snr));
@@ -260,6 +261,12 @@ static json_t *metrics_json(struct builder *b, const struct aa_method_result *m,
 	put(b, flip, "per_frame", flip_frames);
 	put(b, flip, "ppd", num(AA_FLIP_DEFAULT_PPD));
 	put(b, metrics, "flip", flip);
+	json_t *flicker = json_object(), *flicker_frames = json_array();
+	for (int i = 0; i < m->frame_count; i++)
+		push(b, flicker_frames, num(m->frames[i].flicker));
+	put(b, flicker, "mean", num(s->flicker_mean));
+	put(b, flicker, "per_frame", flicker_frames);
+	put(b, metrics, "flicker", flicker);
 	for (int k = 0; k < AA_FOURIER_BANDS; k++)
 		band_mean[k] = band_n ? band_sum[k] / band_n : NAN;
 	json_t *fourier = fourier_json(b, band_mean);

@@ -66,21 +66,22 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 {
 	*out = (struct aa_method_summary){
 		.gpu_ms_median = NAN, .gpu_ms_p90 = NAN, .gpu_ms_mean = NAN, .cpu_ms_median = NAN,
-		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN,
+		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flicker_mean = NAN,
 		.best_frame = -1, .worst_frame = -1, .best_psnr = NAN, .worst_psnr = NAN,
 	};
 	const int n = m->frames ? m->frame_count : 0;
 	if (n <= 0)
 		return;
-	double *v = malloc((size_t)n * 4 * sizeof *v);
+	double *v = malloc((size_t)n * 5 * sizeof *v);
 	if (!v)
 		return;
-	double *gpu = v, *cpu = v + n, *mse = v + 2 * n, *ssim = v + 3 * n;
+	double *gpu = v, *cpu = v + n, *mse = v + 2 * n, *ssim = v + 3 * n, *flicker = v + 4 * n;
 	for (int i = 0; i < n; i++) {
 		gpu[i] = m->frames[i].gpu_ms;
 		cpu[i] = m->frames[i].cpu_ms;
 		mse[i] = m->frames[i].metrics.identical ? 0.0 : m->frames[i].metrics.mse;
 		ssim[i] = m->frames[i].metrics.ssim;
+		flicker[i] = m->frames[i].flicker;
 	}
 	out->gpu_ms_median = aa_percentile(gpu, n, 50);
 	out->gpu_ms_p90 = aa_percentile(gpu, n, 90);
@@ -88,6 +89,7 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	out->cpu_ms_median = aa_percentile(cpu, n, 50);
 	out->mse_mean = finite_mean(mse, n);
 	out->ssim_mean = finite_mean(ssim, n);
+	out->flicker_mean = finite_mean(flicker, n); /* frame 0 has none (NAN) */
 	/* PSNR of the mean MSE, not the mean of PSNRs: one identical frame would make the latter infinite,
 	 * and dB do not average meaningfully. */
 	out->psnr_identical = out->mse_mean == 0;
