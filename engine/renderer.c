@@ -182,11 +182,19 @@ static const char *const scene_output_names[AA_SCENE_OUTPUT_COUNT] = {
 	"velocity", "model ids", "world position", "geometric normal", "unlit luma + depth",
 };
 
+/* Field by field: the struct has padding, which memcmp would compare too. */
+static bool desc_equal(const struct aa_scene_target_desc *a, const struct aa_scene_target_desc *b)
+{
+	return a->samples == b->samples && a->outputs == b->outputs && a->depth_readable == b->depth_readable &&
+	       a->edge_distances == b->edge_distances && a->shade_at_pixel_centre == b->shade_at_pixel_centre &&
+	       a->texture_lod_bias == b->texture_lod_bias;
+}
+
 /* The render pass and pipelines of one kind of scene target, created on first use. */
 static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_desc *d, struct aa_error *err)
 {
 	for (int i = 0; i < r->variant_count; i++)
-		if (memcmp(&r->variants[i].desc, d, sizeof *d) == 0)
+		if (desc_equal(&r->variants[i].desc, d))
 			return i;
 	if (r->variant_count == (int)(sizeof r->variants / sizeof r->variants[0]))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "too many scene target kinds");
@@ -211,9 +219,11 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 	}
 	if (aa_gpu_render_pass_create(r->gpu, &pass, &v->pass, err))
 		return -1;
-	VkBool32 constants[2] = {VK_FALSE, d->shade_at_pixel_centre};
-	VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)}};
-	VkSpecializationInfo spec = {2, entries, sizeof constants, constants};
+	struct { VkBool32 alpha_test, centre; float lod_bias; } constants = {VK_FALSE, d->shade_at_pixel_centre,
+									   d->texture_lod_bias};
+	VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)},
+					       {2, 2 * sizeof(VkBool32), sizeof(float)}};
+	VkSpecializationInfo spec = {3, entries, sizeof constants, &constants};
 	struct aa_gpu_graphics_desc g = {
 		.vert = d->outputs ? "gbuffer.vert" : "scene.vert",
 		.frag = d->outputs ? "gbuffer.frag" : d->edge_distances ? "gbaa.frag" : "scene.frag",
@@ -225,7 +235,7 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->opaque, err))
 		return -1;
 	if (r->plan.alpha_test) {
-		constants[0] = VK_TRUE;
+		constants.alpha_test = VK_TRUE;
 		if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->cutout, err))
 			return -1;
 	}

@@ -69,6 +69,7 @@ struct aa_scene_target_desc {
 	bool edge_distances;        /* GBAA: a geometry shader writes distances to triangle edges (RG16F) */
 	bool shade_at_pixel_centre; /* virtual MSAA samples: jittered geometry, shading at the pixel centre;
 				     * the target must be frame-sized */
+	float texture_lod_bias;     /* added to every texture fetch's mip level (the reference: finer) */
 };
 
 struct aa_scene_variant {

@@ -1,6 +1,10 @@
 // Surface colour and lighting shared by the scene passes (scene.frag, gbaa.frag).
 // Needs common.glsl included first.
 
+// Texture LOD bias of the target: the reference's N samples per pixel each stand for 1/N of the pixel,
+// so they read a mip level finer by log2(sqrt(N)); otherwise it would converge to trilinear blur.
+layout(constant_id = 2) const float TEXTURE_LOD_BIAS = 0.0;
+
 vec4 surface_color(Material m, vec2 uv)
 {
 	uint pattern = uint(m.color2.w);
@@ -13,7 +17,7 @@ vec4 surface_color(Material m, vec2 uv)
 		if (fract(uv.x * m.pattern.x) < m.pattern.z)
 			c.rgb = m.color2.rgb;
 	} else if (pattern == PATTERN_TEXTURE) {
-		c *= texture(material_texture, uv * m.pattern.xy); // sRGB view: decoded to linear by the sampler
+		c *= texture(material_texture, uv * m.pattern.xy, TEXTURE_LOD_BIAS); // sRGB view: decoded by the sampler
 	}
 	return c;
 }

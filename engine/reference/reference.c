@@ -1,4 +1,5 @@
 /* Reference accumulation: jittered renders summed in RGBA32F, read back at N/2 and N samples. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,7 +34,10 @@ int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference 
 	if (!ref->offsets)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	aa_reference_offsets(samples, ref->offsets);
-	if (aa_scene_target_create(r, &ref->target, r->width, r->height, "reference", NULL, err) ||
+	/* each of the N samples stands for 1/N of the pixel: textures are read log2(sqrt(N)) mip levels finer,
+	 * so the accumulation converges to the box-filtered texture, not to trilinear blur */
+	struct aa_scene_target_desc desc = {.samples = 1, .texture_lod_bias = -0.5f * log2f((float)samples)};
+	if (aa_scene_target_create_desc(r, &ref->target, r->width, r->height, &desc, "reference", NULL, err) ||
 	    aa_gpu_image_create(r->gpu, &ref->accum, r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
 				VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
 				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err) ||
