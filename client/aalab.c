@@ -5,24 +5,25 @@
 #include "client.h"
 
 static const struct aa_cmd_entry commands[] = {
+	/* name, usage, summary, exec[, full help] */
 	{"run", "run [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
 		"[--reference-samples N] [--out DIR] [--device SEL] [--no-images] [--json] [--quiet]",
-	 "render a comparison job in this process and write results, images and a report", cmd_run},
-	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes},
+	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
+	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
 	{"methods", "methods [--json]", "list the AA methods with their parameters, defaults and valid values",
-	 cmd_methods},
+	 cmd_methods, NULL},
 	{"submit", "submit [JOB.json] [job flags of run] [--scene-file FILE] [--watch] [--connect ADDRESS] [--json]",
-	 "queue a job on aalabd and print its id", cmd_submit},
+	 "queue a job on aalabd and print its id", cmd_submit, NULL},
 	{"watch", "watch JOB [--after SEQ] [--connect ADDRESS] [--json]", "follow a job on aalabd until it ends",
-	 cmd_watch},
-	{"status", "status JOB [--connect ADDRESS] [--json]", "show a job's state, progress and summary", cmd_status},
-	{"list", "list [--state STATE] [--connect ADDRESS] [--json]", "list the jobs aalabd holds", cmd_jobs},
-	{"cancel", "cancel JOB [--connect ADDRESS] [--json]", "cancel a queued or running job", cmd_cancel},
+	 cmd_watch, NULL},
+	{"status", "status JOB [--connect ADDRESS] [--json]", "show a job's state, progress and summary", cmd_status, NULL},
+	{"list", "list [--state STATE] [--connect ADDRESS] [--json]", "list the jobs aalabd holds", cmd_jobs, NULL},
+	{"cancel", "cancel JOB [--connect ADDRESS] [--json]", "cancel a queued or running job", cmd_cancel, NULL},
 	{"get", "get JOB [--out DIR] [--file NAME] [--no-images] [--connect ADDRESS] [--json]",
-	 "download a job's results, report and frames", cmd_get},
+	 "download a job's results, report and frames", cmd_get, NULL},
 	{"diff", "diff REF TEST [--metrics psnr,ssim,flip,fourier] [--json] [--error-map OUT.png] "
 		 "[--fail-above NAME=X ...] [--fail-below NAME=X ...] [--ppd X]",
-	 "compare two image files (PSNR, SSIM, FLIP, Fourier bands) and gate on thresholds", cmd_diff},
+	 "compare two image files (PSNR, SSIM, FLIP, Fourier bands) and gate on thresholds", cmd_diff, aa_diff_help},
 };
 
 static void usage(FILE *out)
@@ -50,8 +51,8 @@ int main(int argc, char **argv)
 	for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
 		if (strcmp(argv[1], commands[i].name) == 0) {
 			if (argc > 2 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
-				if (commands[i].exec == cmd_diff) /* diff has more options than a usage line holds */
-					fputs(aa_diff_help, stdout);
+				if (commands[i].help)
+					fputs(commands[i].help, stdout);
 				else
 					printf("usage: aalab %s\n\n%s\n", commands[i].usage, commands[i].summary);
 				return AA_EXIT_OK;

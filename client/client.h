@@ -13,7 +13,10 @@ struct aa_cmd_entry {
 	const char *usage;
 	const char *summary;
 	int (*exec)(int argc, char **argv);
+	const char *help;   /* full --help text, when the usage line is not enough */
 };
+
+extern const char aa_run_help[];
 
 /* Exit statuses: 0 success, 1 the work failed (or a --fail-above gate tripped), 2 bad usage or input. */
 #define AA_EXIT_OK 0

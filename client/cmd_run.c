@@ -13,7 +13,7 @@
 #include "client.h"
 #include "results/results.h"
 
-static const char run_help[] =
+const char aa_run_help[] =
 	"usage: aalab run [JOB.json] [options]\n"
 	"\n"
 	"Renders every frame of a camera path with each AA method and with a supersampled reference, and\n"
@@ -21,7 +21,8 @@ static const char run_help[] =
 	"\n"
 	"  --scene NAME|FILE       scene name (see 'aalab scenes') or scene file (default thin-wires)\n"
 	"  --path NAME             camera path: default, static, or one the scene defines (default default)\n"
-	"  --methods LIST          comma-separated methods, e.g. none,ssaa:16 (see 'aalab methods')\n"
+	"  --methods LIST          comma-separated methods, e.g. none,ssaa:16 (default none,ssaa:16;\n"
+	"                          see 'aalab methods')\n"
 	"  --frames N              frames to render (default 1)\n"
 	"  --first-frame N         frame index on the path to start at (default 0)\n"
 	"  --size WxH              image size (default 640x360)\n"
@@ -123,8 +124,8 @@ int cmd_run(int argc, char **argv)
 		case OPT_QUIET: quiet = true; break;
 		case OPT_LOCAL: local = true; break;
 		case OPT_CONNECT: connect = optarg; break;
-		case OPT_HELP: fputs(run_help, stdout); status = AA_EXIT_OK; goto out;
-		default: fputs(run_help, stderr); goto out;
+		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
+		default: fputs(aa_run_help, stderr); goto out;
 		}
 	}
 	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
