@@ -79,7 +79,7 @@ struct aa_method_result {
 	char label[AA_LABEL_MAX];
 	const struct aa_method *method;
 	struct aa_method_params params;
-	char path_taken[64];       /* e.g. "supersampled 4x4 grid", "hardware msaa", "virtual samples" */
+	char path_taken[160];      /* e.g. "4x4 ordered grid, box filter", "hardware 4x", "virtual samples" */
 	int memory_count;
 	struct aa_memory_item memory[AA_MAX_MEMORY_ITEMS]; /* every image/buffer the method allocated */
 	uint64_t memory_bytes;     /* sum of memory[] */

@@ -224,6 +224,32 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 	return 0;
 }
 
+/* One untimed frame of every method before timing starts: lavapipe compiles shader variants on first use,
+ * which would otherwise be charged to the first frame (hundreds of ms). History is reset afterwards. */
+static int warm_up(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_error *err)
+{
+	struct aa_gpu *gpu = &js->engine->gpu;
+	for (int i = 0; i < js->spec->method_count; i++) {
+		const struct aa_method *method = js->spec->methods[i].method;
+		struct aa_frame_ctx warm = *ctx;
+		if (aa_gpu_begin(gpu, &warm.cmd, err))
+			return -1;
+		aa_gpu_timer_reset(warm.cmd, &js->timer);
+		aa_renderer_record_shadow(js->renderer, warm.cmd);
+		warm.timer = &js->timer;
+		if (method->render(js->states[i], &warm, err)) {
+			aa_gpu_submit_wait(gpu, warm.cmd, NULL);
+			aa_error_prefix(err, "%s", js->spec->methods[i].label);
+			return -1;
+		}
+		if (aa_gpu_submit_wait(gpu, warm.cmd, err))
+			return -1;
+		if (method->reset)
+			method->reset(js->states[i]);
+	}
+	return 0;
+}
+
 static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, struct aa_error *err)
 {
 	struct aa_gpu *gpu = &js->engine->gpu;
@@ -335,7 +361,10 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 		js.renderer->inject_nonfinite = ctx.frame == spec->inject_nonfinite_frame;
 		aa_renderer_set_frame(js.renderer, &cam, t, has_prev ? &prev_cam : NULL, t_before, &ctx);
 
-		rc = render_reference(&js, ordinal, ordinal > 0 && still, err);
+		if (ordinal == 0)
+			rc = warm_up(&js, &ctx, err);
+		if (rc == 0)
+			rc = render_reference(&js, ordinal, ordinal > 0 && still, err);
 		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
 				       .frame_ordinal = ordinal, .image = &js.ref8, .linear = &js.full};
 		if (rc == 0)

@@ -118,7 +118,7 @@ struct aa_renderer {
 	VkFramebuffer shadow_framebuffer;
 	VkRenderPass shadow_pass;
 	struct aa_gpu_pipeline scene_layout;    /* layout of every scene and shadow pipeline */
-	struct aa_scene_variant variants[8];
+	struct aa_scene_variant variants[24]; /* one per distinct target kind in the job */
 	int variant_count;
 	struct { VkFormat format; bool load; VkRenderPass pass; } color_passes[16]; /* by target format */
 	int color_pass_count;

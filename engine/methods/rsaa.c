@@ -124,8 +124,11 @@ static int rsaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 		free(s);
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "could not train the RSAA offset table (out of memory)");
 	}
-	snprintf(info->path_taken, sizeof info->path_taken, "virtual samples: %d G-buffer passes + centre",
-		 s->samples);
+	/* the trained table's classes, as the paper reports them (40 and 151 for its 8x pattern) */
+	snprintf(info->path_taken, sizeof info->path_taken,
+		 "virtual samples: %d G-buffer passes + centre; table: %d one-line, %d two-line, %d fallback masks",
+		 s->samples, t->class_count[RSAA_CLASS_ONE_LINE], t->class_count[RSAA_CLASS_TWO_LINE],
+		 t->class_count[RSAA_CLASS_FALLBACK]);
 	struct aa_scene_target_desc d = {.samples = 1, .outputs = AA_OUT_POSITION | AA_OUT_NORMAL};
 	VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
 				    VK_IMAGE_USAGE_SAMPLED_BIT;

@@ -353,6 +353,7 @@ static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 		put_psnr(b, fo, "convergence_psnr", "convergence_identical", psnr, f->convergence_identical);
 		put(b, fo, "convergence_mse", num(mse));
 		put(b, fo, "nonfinite", json_integer(f->nonfinite));
+		put(b, fo, "reused", json_boolean(f->reused));
 		put(b, fo, "image", image_path(r, "frames", "reference", i));
 		push(b, per_frame, fo);
 	}
