@@ -59,66 +59,30 @@ int cmd_scenes(int argc, char **argv)
 	return AA_EXIT_OK;
 }
 
-static const char *type_name(enum aa_param_type t)
-{
-	switch (t) {
-	case AA_PARAM_INT: return "int";
-	case AA_PARAM_FLOAT: return "float";
-	case AA_PARAM_ENUM: return "enum";
-	case AA_PARAM_BOOL: return "bool";
-	}
-	return "?";
-}
-
-static void valid_values(const struct aa_param_def *d, char *out, size_t size)
-{
-	size_t n = 0;
-	out[0] = 0;
-	if (d->allowed) {
-		for (int i = 0; d->allowed[i]; i++)
-			n += (size_t)snprintf(out + n, n < size ? size - n : 0, "%s%d", i ? ", " : "", d->allowed[i]);
-	} else if (d->choices) {
-		for (int i = 0; d->choices[i]; i++)
-			n += (size_t)snprintf(out + n, n < size ? size - n : 0, "%s%s", i ? ", " : "", d->choices[i]);
-	} else if (d->type == AA_PARAM_BOOL) {
-		snprintf(out, size, "true, false");
-	} else {
-		snprintf(out, size, "%g..%g", d->min, d->max);
-	}
-}
-
 int cmd_methods(int argc, char **argv)
 {
-	bool json = want_json(argc, argv);
-	json_t *arr = json_array();
-	for (int i = 0; i < aa_method_count; i++) {
-		const struct aa_method *m = aa_methods[i];
-		struct aa_method_params defaults;
-		aa_method_defaults(m, &defaults);
-		json_t *params = json_array();
-		if (!json)
-			printf("%s\n    %s (%s)\n", m->name, m->summary, m->seed);
-		for (int p = 0; p < m->param_count; p++) {
-			const struct aa_param_def *d = &m->params[p];
-			char def[64], valid[256];
-			aa_method_param_text(m, &defaults, p, def, sizeof def);
-			valid_values(d, valid, sizeof valid);
-			json_array_append_new(params, json_pack("{ss ss ss ss ss sb}", "name", d->name, "type",
-								type_name(d->type), "default", def, "valid", valid,
-								"help", d->help ? d->help : "", "main",
-								m->main_param && !strcmp(m->main_param, d->name)));
-			if (!json)
-				printf("    %-18s %-5s default %-8s valid: %s\n        %s%s\n", d->name,
-				       type_name(d->type), def, valid, d->help ? d->help : "",
-				       m->main_param && !strcmp(m->main_param, d->name)
-				       ? " (main parameter: a bare number sets it, e.g. name:N)" : "");
-		}
-		json_array_append_new(arr, json_pack("{ss ss ss so}", "name", m->name, "summary", m->summary, "seed",
-						     m->seed, "params", params));
-	}
-	if (json) {
+	json_t *arr = aa_methods_describe();
+	if (want_json(argc, argv)) {
 		json_dumpf(arr, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
+		json_decref(arr);
+		return AA_EXIT_OK;
+	}
+	size_t i, p;
+	json_t *m, *param;
+	json_array_foreach(arr, i, m) {
+		printf("%s\n    %s (%s)\n", json_string_value(json_object_get(m, "name")),
+		       json_string_value(json_object_get(m, "summary")), json_string_value(json_object_get(m, "seed")));
+		json_array_foreach(json_object_get(m, "params"), p, param) {
+			printf("    %-18s %-5s default %-8s valid: %s\n        %s%s\n",
+			       json_string_value(json_object_get(param, "name")),
+			       json_string_value(json_object_get(param, "type")),
+			       json_string_value(json_object_get(param, "default")),
+			       json_string_value(json_object_get(param, "valid")),
+			       json_string_value(json_object_get(param, "help")),
+			       json_is_true(json_object_get(param, "main"))
+				       ? " (main parameter: a bare number sets it, e.g. name:N)" : "");
+		}
 	}
 	json_decref(arr);
 	return AA_EXIT_OK;

@@ -332,21 +332,7 @@ static void op_methods(struct conn *c, json_t *msg, json_t *tag)
 	static const char *const keys[] = {NULL};
 	if (check_keys(c, msg, tag, keys))
 		return;
-	json_t *arr = json_array();
-	for (int i = 0; i < aa_method_count; i++) {
-		const struct aa_method *m = aa_methods[i];
-		struct aa_method_params defaults;
-		aa_method_defaults(m, &defaults);
-		json_t *params = json_array();
-		for (int p = 0; p < m->param_count; p++) {
-			char def[64];
-			aa_method_param_text(m, &defaults, p, def, sizeof def);
-			json_array_append_new(params, json_pack("{ss ss ss}", "name", m->params[p].name, "default", def,
-								"help", m->params[p].help ? m->params[p].help : ""));
-		}
-		json_array_append_new(arr, json_pack("{ss ss so}", "name", m->name, "summary", m->summary, "params",
-						     params));
-	}
+	json_t *arr = aa_methods_describe();
 	reply(c, tag, json_pack("{so}", "methods", arr));
 }
 

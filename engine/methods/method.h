@@ -92,6 +92,10 @@ void aa_method_defaults(const struct aa_method *m, struct aa_method_params *para
  * non-default parameters in table order as key=value joined by ',' ("fxaa:preset=12,subpix=0.5",
  * "msaa:8,resolve=box"). The label parses back to the same parameters. */
 void aa_method_label(const struct aa_method *m, const struct aa_method_params *p, char *out, size_t size);
+/* Every registered method as JSON: [{name, summary, seed, params: [{name, type, default, valid, help,
+ * main}]}] (the caller owns the array). `aalab methods --json` and aalabd's `methods` reply. */
+struct json_t;
+struct json_t *aa_methods_describe(void);
 /* Writes the value of parameter i as text ("16", "0.75", "high", "true"). */
 void aa_method_param_text(const struct aa_method *m, const struct aa_method_params *p, int i, char *out,
 			  size_t size);
