@@ -29,11 +29,11 @@ void main()
 	vec4 clip = in_clip, prev_clip = in_prev_clip;
 	if (SHADE_AT_PIXEL_CENTRE) {
 		vec2 offset = draw.jitter_ndc * frame.frame_size.xy * 0.5;
-		world = interpolateAtOffset(in_world, offset);
-		normal = interpolateAtOffset(in_normal, offset);
-		uv = interpolateAtOffset(in_uv, offset);
-		clip = interpolateAtOffset(in_clip, offset);
-		prev_clip = interpolateAtOffset(in_prev_clip, offset);
+		world = at_offset(in_world, offset);
+		normal = at_offset(in_normal, offset);
+		uv = at_offset(in_uv, offset);
+		clip = at_offset(in_clip, offset);
+		prev_clip = at_offset(in_prev_clip, offset);
 	}
 	Material m = materials[draw.material];
 	vec4 base = surface_color(m, uv);

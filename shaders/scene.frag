@@ -22,9 +22,9 @@ void main()
 	vec2 uv = in_uv;
 	if (SHADE_AT_PIXEL_CENTRE) {
 		vec2 offset = draw.jitter_ndc * frame.frame_size.xy * 0.5;
-		world = interpolateAtOffset(in_world, offset);
-		normal = interpolateAtOffset(in_normal, offset);
-		uv = interpolateAtOffset(in_uv, offset);
+		world = at_offset(in_world, offset);
+		normal = at_offset(in_normal, offset);
+		uv = at_offset(in_uv, offset);
 	}
 	Material m = materials[draw.material];
 	vec4 base = surface_color(m, uv);
