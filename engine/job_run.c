@@ -349,15 +349,15 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
 	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
 		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
-		double t = ctx.frame / fps, t_prev = ordinal == 0 ? -1.0 : (ctx.frame - 1) / fps;
+		double t = ctx.frame / fps, t_before = (ctx.frame - 1) / fps;
 		struct aa_camera cam, prev_cam;
-		aa_camera_path_eval(path, hold_first, t_prev, t, &cam, &ctx.cut);
-		/* the previous frame on the path, for velocity; none after a cut */
-		double t_before = (ctx.frame - 1) / fps;
-		bool cut_before = false;
-		aa_camera_path_eval(path, hold_first, t_before - 1.0 / fps, t_before, &prev_cam, &cut_before);
-		ctx.cut |= ordinal == 0;
-		bool has_prev = ctx.frame > 0 && !(ctx.cut && ordinal > 0);
+		/* a cut between the previous frame on the path and this one, even when this is the job's
+		 * first frame: velocity must not be measured across it */
+		bool path_cut = false, unused = false;
+		aa_camera_path_eval(path, hold_first, ctx.frame > 0 ? t_before : -1.0, t, &cam, &path_cut);
+		aa_camera_path_eval(path, hold_first, -1.0, t_before, &prev_cam, &unused);
+		ctx.cut = path_cut || ordinal == 0; /* history starts empty at the first frame */
+		bool has_prev = ctx.frame > 0 && !path_cut;
 		js.renderer->inject_nonfinite = ctx.frame == spec->inject_nonfinite_frame;
 		aa_renderer_set_frame(js.renderer, &cam, t, has_prev ? &prev_cam : NULL, t_before, &ctx);
 
