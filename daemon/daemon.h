@@ -71,7 +71,7 @@ struct conn {
 	struct job *watch_job;
 	unsigned long watch_next_seq;
 	json_t *watch_tag;
-	int watch_frames;         /* FRAMES_NONE / FRAMES_PNG / FRAMES_RGBA8 */
+	int watch_frames;         /* FRAMES_NONE / FRAMES_PNG / FRAMES_RGBA8 / FRAMES_RGBA16F */
 	unsigned long frames_dropped;
 	int http_requests;
 	struct conn *next;
@@ -126,7 +126,7 @@ void protocol_error(struct conn *c, json_t *tag, const char *code, const char *p
 void protocol_pump_watch(struct conn *c);
 bool token_equal(const char *given, const char *want); /* constant time in the given token */
 
-enum { FRAMES_NONE, FRAMES_PNG, FRAMES_RGBA8 };
+enum { FRAMES_NONE, FRAMES_PNG, FRAMES_RGBA8, FRAMES_RGBA16F };
 
 /* stream.c: watch streams and stored files */
 void op_get(struct conn *c, json_t *msg, json_t *tag);

@@ -141,7 +141,7 @@ static uint64_t tree_bytes(const char *dir)
 /* Clears what a run leaves in a job directory, before a job runs (again) from the start. */
 static void clear_results(const char *dir)
 {
-	const char *const parts[] = {"frames", "diff", "flip", "results.json", "report.html", "events.jsonl", NULL};
+	const char *const parts[] = {"frames", "diff", "flip", "linear", "results.json", "report.html", "events.jsonl", NULL};
 	char path[1400];
 	for (int i = 0; parts[i]; i++) {
 		snprintf(path, sizeof path, "%s/%s", dir, parts[i]);

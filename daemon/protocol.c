@@ -146,9 +146,9 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 		}
 		c->authed = true;
 	}
-	reply(c, tag, json_pack("{si s[i] ss so s[ss] ss}", "protocol", AALABD_PROTOCOL_VERSION, "versions",
+	reply(c, tag, json_pack("{si s[i] ss so s[sss] ss}", "protocol", AALABD_PROTOCOL_VERSION, "versions",
 				AALABD_PROTOCOL_VERSION, "server", "aalabd " PACKAGE_VERSION, "limits",
-				limits_json(&c->d->cfg), "frame_formats", "png", "rgba8", "peer", c->peer));
+				limits_json(&c->d->cfg), "frame_formats", "png", "rgba8", "rgba16f", "peer", c->peer));
 }
 
 static double method_samples(const struct aa_method_spec *m)
@@ -352,8 +352,10 @@ static void op_watch(struct conn *c, json_t *msg, json_t *tag)
 		fmt = FRAMES_PNG;
 	else if (f && !strcmp(f, "rgba8"))
 		fmt = FRAMES_RGBA8;
+	else if (f && !strcmp(f, "rgba16f"))
+		fmt = FRAMES_RGBA16F;
 	else if (!f || strcmp(f, "none")) {
-		protocol_error(c, tag, "bad_request", "frames", "expected none, png or rgba8");
+		protocol_error(c, tag, "bad_request", "frames", "expected none, png, rgba8 or rgba16f");
 		return;
 	}
 	if (c->watch_job) {

@@ -54,16 +54,18 @@ static bool name_ok(const char *s, size_t n)
 int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *out, size_t size)
 {
 	static const char *const top[] = {"results.json", "report.html", "events.jsonl", "scene.json", NULL};
-	/* images live in frames/, diff/ and flip/ (engine/results/results.h) */
+	/* images live in frames/, diff/ and flip/ as PNG, linear colour in linear/ as raw RGBA16F
+	 * (engine/results/results.h) */
 	bool ok = false;
 	for (int i = 0; top[i]; i++)
 		ok |= strcmp(rel, top[i]) == 0;
-	if (!ok && (!strncmp(rel, "frames/", 7) || !strncmp(rel, "diff/", 5) || !strncmp(rel, "flip/", 5))) {
+	bool linear = !strncmp(rel, "linear/", 7);
+	if (!ok && (!strncmp(rel, "frames/", 7) || !strncmp(rel, "diff/", 5) || !strncmp(rel, "flip/", 5) || linear)) {
 		const char *name = strchr(rel, '/') + 1, *slash = strchr(name, '/');
 		if (slash && name_ok(name, (size_t)(slash - name))) {
 			const char *file = slash + 1;
 			size_t digits = strspn(file, "0123456789");
-			ok = digits >= 4 && digits <= 9 && strcmp(file + digits, ".png") == 0;
+			ok = digits >= 4 && digits <= 9 && strcmp(file + digits, linear ? ".rgba16f" : ".png") == 0;
 		}
 	}
 	if (!ok || !name_ok(id, strlen(id)))
@@ -95,7 +97,7 @@ static void send_event(struct conn *c, char *line)
 	json_t *ev = NULL;
 	const char *image = NULL;
 	if (c->watch_frames != FRAMES_NONE && (ev = json_loads(line, 0, NULL)))
-		image = json_string_value(json_object_get(ev, "image"));
+		image = json_string_value(json_object_get(ev, c->watch_frames == FRAMES_RGBA16F ? "linear" : "image"));
 	if (!image) {
 		size_t n = strlen(line);
 		line[n] = '\n'; /* the caller's copy: its terminator becomes the newline */
@@ -109,15 +111,18 @@ static void send_event(struct conn *c, char *line)
 	struct aa_image_rgba8 img = {0};
 	struct aa_error err = {0};
 	bool have = job_file_path(c->d->store->dir, c->watch_job->id, image, path, sizeof path) == 0;
-	if (have && c->watch_frames == FRAMES_PNG)
-		have = read_whole_file(path, c->d->cfg.client_buffer_bytes * 4, &data, &size) == 0;
-	else if (have)
+	if (have && c->watch_frames == FRAMES_RGBA8) {
 		have = aa_image_read_rgba8(path, &img, &err) == 0;
-	if (c->watch_frames == FRAMES_RGBA8 && have) {
 		data = (char *)img.pixels;
 		size = (size_t)img.width * img.height * 4;
 		json_object_set_new(ev, "width", json_integer(img.width));
 		json_object_set_new(ev, "height", json_integer(img.height));
+	} else if (have) { /* PNG bytes, or raw RGBA16F halves stored as they are sent */
+		have = read_whole_file(path, c->d->cfg.client_buffer_bytes * 4, &data, &size) == 0;
+		if (c->watch_frames == FRAMES_RGBA16F) {
+			json_object_set_new(ev, "width", json_integer(c->watch_job->spec.width));
+			json_object_set_new(ev, "height", json_integer(c->watch_job->spec.height));
+		}
 	}
 	/* a client that is behind loses frames, never events, and never slows the renderer */
 	if (have && conn_pending(c) > 0 && conn_pending(c) + size > c->d->cfg.client_buffer_bytes) {
@@ -128,7 +133,8 @@ static void send_event(struct conn *c, char *line)
 	}
 	if (have) {
 		json_object_set_new(ev, "payload", json_integer((json_int_t)size));
-		json_object_set_new(ev, "payload_format", json_string(c->watch_frames == FRAMES_PNG ? "png" : "rgba8"));
+		static const char *const formats[] = {"none", "png", "rgba8", "rgba16f"};
+		json_object_set_new(ev, "payload_format", json_string(formats[c->watch_frames]));
 	}
 	conn_send_json(c, ev);
 	if (have)
@@ -184,7 +190,7 @@ static void list_files(const char *base, const char *rel, json_t *out, int depth
 		char sub[600];
 		snprintf(sub, sizeof sub, "%s%s%s", rel, *rel ? "/" : "", de->d_name);
 		if (depth < 2 && (depth > 0 || !strcmp(de->d_name, "frames") || !strcmp(de->d_name, "diff") ||
-				  !strcmp(de->d_name, "flip")))
+				  !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear")))
 			list_files(base, sub, out, depth + 1);
 		else if (depth == 2 || strcmp(de->d_name, "job.json") != 0)
 			json_array_append_new(out, json_string(sub));

@@ -102,6 +102,12 @@ static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
 	}
 	if (images)
 		json_object_set_new(o, "image", json_string(rel));
+	if (images && ctx->job->spec.linear_frames) {
+		const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference"
+									  : ev->result->methods[ev->method_index].label;
+		aa_results_linear_relpath(label, ev->frame_ordinal, rel, sizeof rel);
+		json_object_set_new(o, "linear", json_string(rel));
+	}
 	json_object_set_new(o, "done", json_integer(++ctx->done));
 	json_object_set_new(o, "total", json_integer(ctx->job->total));
 	return o;

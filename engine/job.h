@@ -34,6 +34,7 @@ struct aa_job_spec {
 	int method_count;
 	struct aa_method_spec methods[AA_MAX_METHODS];
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
+	bool linear_frames;        /* also store each frame's linear colour as raw RGBA16F (streamable) */
 	int inject_nonfinite_frame; /* tests only, not in job JSON: this frame's shading emits NaN/Inf in a
 				     * sparse pixel pattern (-1: never) */
 	char name[128];            /* optional user label of the job */

@@ -12,7 +12,7 @@
 #define AA_MAX_FIRST_FRAME 10000000
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
-					"reference", "methods", "keep_frames", "name", NULL };
+					"reference", "methods", "keep_frames", "linear_frames", "name", NULL };
 static const char *const reference_keys[] = { "samples", NULL };
 static const char *const method_keys[] = { "name", "params", NULL };
 
@@ -354,6 +354,11 @@ int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa
 			return bad(err, AA_ERR_INVALID, "keep_frames", "expected true or false, got %s", type_name(v));
 		s.keep_frames = json_is_true(v);
 	}
+	if ((v = json_object_get(job, "linear_frames"))) {
+		if (!json_is_boolean(v))
+			return bad(err, AA_ERR_INVALID, "linear_frames", "expected true or false, got %s", type_name(v));
+		s.linear_frames = json_is_true(v);
+	}
 	if ((v = json_object_get(job, "name")) && get_string(v, "name", true, s.name, sizeof s.name, err) < 0)
 		return -1;
 	*spec = s;
@@ -369,9 +374,10 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 	json_t *methods = json_array();
 	for (int i = 0; methods && i < spec->method_count && i < AA_MAX_METHODS; i++)
 		json_array_append_new(methods, json_string(spec->methods[i].label));
-	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:s}",
+	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:b, s:s}",
 				"scene", spec->scene, "path", spec->path, "size", size, "frames", spec->frames,
 				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,
-				"methods", methods, "keep_frames", spec->keep_frames, "name", spec->name);
+				"methods", methods, "keep_frames", spec->keep_frames, "linear_frames",
+				spec->linear_frames, "name", spec->name);
 	return job;
 }

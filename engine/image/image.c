@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Largest side we accept: keeps width*height*4 far from overflowing size_t and int arithmetic. */
 #define AA_IMAGE_MAX_SIDE 32768
@@ -102,4 +103,30 @@ void aa_image_encode_srgb8(const struct aa_image_rgbaf *in, struct aa_image_rgba
 			dst[c] = quantize8(aa_linear_to_srgb((float)clamp01(src[c])));
 		dst[3] = quantize8(src[3]); /* alpha is coverage, not a colour: no transfer function */
 	}
+}
+
+uint16_t aa_float_to_half(float f)
+{
+	uint32_t x;
+	memcpy(&x, &f, sizeof x);
+	uint32_t sign = (x >> 16) & 0x8000u, exp = (x >> 23) & 0xffu, mant = x & 0x7fffffu;
+	if (exp == 0xffu) /* Inf or NaN (keep a mantissa bit so NaN stays NaN) */
+		return (uint16_t)(sign | 0x7c00u | (mant ? 0x200u : 0u));
+	int e = (int)exp - 127 + 15;
+	if (e >= 31)
+		return (uint16_t)(sign | 0x7c00u);
+	if (e <= 0) { /* subnormal half or zero */
+		if (e < -10)
+			return (uint16_t)sign;
+		mant |= 0x800000u;
+		uint32_t shift = (uint32_t)(14 - e);
+		uint32_t half = mant >> shift, rest = mant & ((1u << shift) - 1), mid = 1u << (shift - 1);
+		if (rest > mid || (rest == mid && (half & 1u)))
+			half++;
+		return (uint16_t)(sign | half);
+	}
+	uint32_t half = ((uint32_t)e << 10) | (mant >> 13), rest = mant & 0x1fffu;
+	if (rest > 0x1000u || (rest == 0x1000u && (half & 1u)))
+		half++; /* may carry into the exponent, which is right (up to infinity) */
+	return (uint16_t)(sign | half);
 }

@@ -31,6 +31,9 @@ float aa_linear_to_srgb(float v);
 /* Linear float -> sRGB 8-bit with round-to-nearest; NaN maps to 0, values are clamped to [0,1]. */
 void aa_image_encode_srgb8(const struct aa_image_rgbaf *in, struct aa_image_rgba8 *out);
 
+/* IEEE half floats (round to nearest even; overflow to infinity, NaN kept), for raw RGBA16F frames. */
+uint16_t aa_float_to_half(float f);
+
 /* Writes an 8-bit PNG (RGBA if any alpha < 255, else RGB). */
 int aa_image_write_png(const char *path, const struct aa_image_rgba8 *img, struct aa_error *err);
 /* Encodes a PNG into memory (for streaming); *data is malloc'ed. */

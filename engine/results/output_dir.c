@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -35,6 +36,13 @@ void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, 
 	char dirname[AA_LABEL_MAX * 2];
 	aa_results_method_dirname(label, dirname, sizeof dirname);
 	snprintf(out, size, "%s/%s/%04d.png", kind, dirname, ordinal);
+}
+
+void aa_results_linear_relpath(const char *label, int ordinal, char *out, size_t size)
+{
+	char dirname[AA_LABEL_MAX * 2];
+	aa_results_method_dirname(label, dirname, sizeof dirname);
+	snprintf(out, size, "linear/%s/%04d.rgba16f", dirname, ordinal);
 }
 
 /* mkdir -p: creates every missing directory of path up to its last '/'. */
@@ -83,16 +91,45 @@ int aa_results_write_image(const char *dir, const char *relpath, const struct aa
 	return aa_image_write_png(path, img, err);
 }
 
+/* Raw RGBA16F, rows top to bottom, little-endian IEEE halves: what a watcher asking for rgba16f gets. */
+static int write_linear(const char *dir, const char *label, int ordinal, const struct aa_image_rgbaf *img,
+			struct aa_error *err)
+{
+	char rel[AA_LABEL_MAX * 2 + 32], path[4096];
+	aa_results_linear_relpath(label, ordinal, rel, sizeof rel);
+	if (snprintf(path, sizeof path, "%s/%s", dir, rel) >= (int)sizeof path)
+		return aa_error_set(err, AA_ERR_IO, "", "path %s/%s is too long", dir, rel);
+	if (make_parents(path, err) < 0)
+		return -1;
+	size_t n = (size_t)img->width * img->height * 4;
+	uint16_t *half = malloc(n * sizeof *half);
+	if (!half)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	for (size_t i = 0; i < n; i++)
+		half[i] = aa_float_to_half(img->pixels[i]);
+	FILE *f = fopen(path, "wb");
+	bool ok = f && fwrite(half, sizeof *half, n, f) == n;
+	if (f && fclose(f) != 0)
+		ok = false;
+	free(half);
+	return ok ? 0 : aa_error_set(err, AA_ERR_IO, "", "cannot write %s: %s", path, strerror(errno));
+}
+
 int aa_results_write_event_images(const char *dir, const struct aa_event *ev, struct aa_error *err)
 {
 	char rel[AA_LABEL_MAX * 2 + 32];
+	bool linear = ev->result && ev->result->spec.linear_frames && ev->linear;
 	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
 		aa_results_frame_relpath("frames", "reference", ev->frame_ordinal, rel, sizeof rel);
+		if (linear && write_linear(dir, "reference", ev->frame_ordinal, ev->linear, err))
+			return -1;
 		return aa_results_write_image(dir, rel, ev->image, err);
 	}
 	if (ev->type != AA_EVENT_METHOD_FRAME)
 		return 0;
 	const char *label = ev->result->methods[ev->method_index].label;
+	if (linear && write_linear(dir, label, ev->frame_ordinal, ev->linear, err))
+		return -1;
 	aa_results_frame_relpath("frames", label, ev->frame_ordinal, rel, sizeof rel);
 	if (aa_results_write_image(dir, rel, ev->image, err))
 		return -1;

@@ -16,6 +16,8 @@ void aa_results_method_dirname(const char *label, char *out, size_t size);
  *   flip/<dirname>/<NNNN>.png     the FLIP error map (magma colour map)
  * NNNN is the frame ordinal (0-based) with 4 digits. */
 void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size);
+/* linear/<dirname>/<NNNN>.rgba16f: the frame's linear colour as raw RGBA16F (jobs with linear_frames). */
+void aa_results_linear_relpath(const char *label, int ordinal, char *out, size_t size);
 /* Writes an image under dir at the relative path, creating directories. */
 int aa_results_write_image(const char *dir, const char *relpath, const struct aa_image_rgba8 *img,
 			   struct aa_error *err);

@@ -127,6 +127,20 @@ try:
     b = conn.getresponse().read()
     conn.close()
     check(a == b == b"ok\n", "HTTP keep-alive serves two requests on one connection")
+
+    # linear frames: a job that keeps them streams raw RGBA16F (little-endian halves), finite, in range
+    import struct
+    c = d.connect()
+    job = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=1, linear_frames=True)})["job"]
+    events, end = c.watch(job, frames="rgba16f")
+    raw = [e for e in events if e.get("payload_format") == "rgba16f"]
+    check(len(raw) == 3, "rgba16f: the reference and both methods' frames are sent (%d)" % len(raw))
+    check(all(e["width"] == 64 and e["height"] == 36 and len(e["_payload"]) == 64 * 36 * 8 for e in raw),
+          "rgba16f frames are width x height x 8 bytes")
+    values = [v for e in raw for v in struct.unpack("<%de" % (64 * 36 * 4), e["_payload"])]
+    check(all(v == v and 0.0 <= v <= 64.0 for v in values), "rgba16f values are finite linear colours")
+    check(max(values) > 0.05, "rgba16f frames are not black")
+    c.close()
     check(d.stop() == 0, "aalabd stops cleanly")
 except Exception as e:
     import traceback
