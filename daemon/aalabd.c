@@ -322,6 +322,9 @@ int main(int argc, char **argv)
 		fprintf(stderr, "aalabd: %s\n", aerr.message);
 		goto out;
 	}
+	/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
+	 * engine belongs to the worker thread from here on) */
+	aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
 	if (worker_start(store)) {
 		fprintf(stderr, "aalabd: cannot start the GPU worker thread\n");
 		goto out;

@@ -114,6 +114,14 @@ static void metrics(struct daemon *d, struct response *r)
 		"# HELP aalab_gpu_busy_seconds_total Seconds the GPU worker spent running jobs.\n"
 		"# TYPE aalab_gpu_busy_seconds_total counter\naalab_gpu_busy_seconds_total %.3f\n",
 		(unsigned long long)s->frames_rendered, (unsigned long long)s->jobs_finished, busy);
+	fprintf(f, "# HELP aalab_gpu_scene_cache_hits_total Jobs whose scene was already on the GPU.\n"
+		"# TYPE aalab_gpu_scene_cache_hits_total counter\naalab_gpu_scene_cache_hits_total %llu\n"
+		"# HELP aalab_gpu_scene_cache_misses_total Jobs that uploaded their scene.\n"
+		"# TYPE aalab_gpu_scene_cache_misses_total counter\naalab_gpu_scene_cache_misses_total %llu\n"
+		"# HELP aalab_gpu_scene_cache_bytes GPU memory held by uploaded scenes.\n"
+		"# TYPE aalab_gpu_scene_cache_bytes gauge\naalab_gpu_scene_cache_bytes %llu\n",
+		(unsigned long long)s->gpu_scenes.hits, (unsigned long long)s->gpu_scenes.misses,
+		(unsigned long long)s->gpu_scenes.bytes);
 	pthread_mutex_unlock(&s->lock);
 	fprintf(f, "# HELP aalab_scene_cache_hits_total Scene lookups served from the cache.\n"
 		"# TYPE aalab_scene_cache_hits_total counter\naalab_scene_cache_hits_total %llu\n"

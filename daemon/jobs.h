@@ -58,6 +58,7 @@ struct store {
 	/* metrics */
 	uint64_t frames_rendered, jobs_finished;
 	double gpu_busy_seconds;
+	struct aa_upload_stats gpu_scenes; /* the engine's cache of uploaded scenes, after the last job */
 };
 
 const char *job_state_name(enum job_state s);

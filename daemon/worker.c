@@ -229,6 +229,7 @@ static void run_job(struct store *s, struct job *job)
 		job->finished_at = now_s();
 	}
 	s->gpu_busy_seconds += busy;
+	s->gpu_scenes = aa_engine_upload_stats(s->engine);
 	s->jobs_finished += !requeue;
 	pthread_mutex_unlock(&s->lock);
 	publish(&ctx, ev, true);

@@ -23,6 +23,16 @@ void aa_engine_destroy(struct aa_engine *engine);
 int aa_engine_validation_errors(const struct aa_engine *engine);
 const char *aa_engine_device_name(const struct aa_engine *engine);
 
+/* Scenes uploaded to the GPU are kept for later jobs on the same loaded scene (aalabd's scene cache keeps
+ * scenes loaded), least recently used first out past a byte budget (default 256 MiB). */
+struct aa_upload_stats {
+	uint64_t hits, misses, evictions;
+	uint64_t bytes;   /* GPU memory the cached scenes hold now */
+	int scenes;       /* scenes cached now */
+};
+void aa_engine_set_upload_budget(struct aa_engine *engine, uint64_t bytes);
+struct aa_upload_stats aa_engine_upload_stats(const struct aa_engine *engine);
+
 /* Runs a job to completion (or cancellation by the callback). On success *result holds everything the
  * results writer needs; free it with aa_job_result_free + free. */
 int aa_job_run(struct aa_engine *engine, const struct aa_job_spec *spec, aa_event_fn on_event, void *user,

@@ -20,6 +20,7 @@ int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **ou
 		free(e);
 		return -1;
 	}
+	e->upload_budget = 256ull << 20;
 	*out = e;
 	return 0;
 }
@@ -28,6 +29,8 @@ void aa_engine_destroy(struct aa_engine *e)
 {
 	if (!e)
 		return;
+	for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++)
+		aa_scene_upload_destroy(e->uploads[i]);
 	aa_gpu_destroy(&e->gpu);
 	free(e);
 }
@@ -40,4 +43,77 @@ int aa_engine_validation_errors(const struct aa_engine *e)
 const char *aa_engine_device_name(const struct aa_engine *e)
 {
 	return e->gpu.properties.deviceName;
+}
+
+void aa_engine_set_upload_budget(struct aa_engine *e, uint64_t bytes)
+{
+	e->upload_budget = bytes;
+}
+
+struct aa_upload_stats aa_engine_upload_stats(const struct aa_engine *e)
+{
+	struct aa_upload_stats s = e->upload_stats;
+	s.bytes = 0;
+	s.scenes = 0;
+	for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++)
+		if (e->uploads[i]) {
+			s.bytes += e->uploads[i]->bytes;
+			s.scenes++;
+		}
+	return s;
+}
+
+/* Drops least recently used scenes, never `keep`, until the cache fits its budget and has a free slot. */
+static void evict(struct aa_engine *e, const struct aa_scene_upload *keep, int *free_slot)
+{
+	for (;;) {
+		struct aa_upload_stats now = aa_engine_upload_stats(e);
+		int oldest = -1, empty = -1;
+		for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++) {
+			if (!e->uploads[i])
+				empty = empty < 0 ? i : empty;
+			else if (e->uploads[i] != keep &&
+				 (oldest < 0 || e->uploads[i]->last_used < e->uploads[oldest]->last_used))
+				oldest = i;
+		}
+		if ((now.bytes <= e->upload_budget && (empty >= 0 || !free_slot)) || oldest < 0) {
+			if (free_slot)
+				*free_slot = empty;
+			return;
+		}
+		aa_scene_upload_destroy(e->uploads[oldest]);
+		e->uploads[oldest] = NULL;
+		e->upload_stats.evictions++;
+	}
+}
+
+struct aa_scene_upload *aa_engine_scene_upload(struct aa_engine *e, const struct aa_scene *scene,
+					       struct aa_error *err)
+{
+	for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++)
+		if (e->uploads[i] && e->uploads[i]->scene_uid == scene->uid) {
+			e->uploads[i]->last_used = ++e->upload_clock;
+			e->upload_stats.hits++;
+			evict(e, e->uploads[i], NULL); /* the budget may have shrunk */
+			return e->uploads[i];
+		}
+	e->upload_stats.misses++;
+	int slot = -1;
+	evict(e, NULL, &slot);
+	struct aa_scene_upload *up;
+	if (aa_scene_upload_create(&e->gpu, scene, &up, err))
+		return NULL;
+	up->last_used = ++e->upload_clock;
+	if (slot < 0) { /* every slot holds a scene: drop the oldest */
+		int oldest = 0;
+		for (int i = 1; i < AA_UPLOAD_CACHE_SLOTS; i++)
+			if (e->uploads[i]->last_used < e->uploads[oldest]->last_used)
+				oldest = i;
+		aa_scene_upload_destroy(e->uploads[oldest]);
+		e->upload_stats.evictions++;
+		slot = oldest;
+	}
+	e->uploads[slot] = up;
+	evict(e, up, NULL); /* a scene larger than the budget still serves this job */
+	return up;
 }

@@ -131,7 +131,9 @@ static int setup(struct job_state *js, struct aa_error *err)
 	struct aa_frame_plan plan;
 	aa_frame_plan_build(js->scene, spec, &plan);
 	struct aa_gpu *gpu = &js->engine->gpu;
-	if (aa_renderer_create(gpu, js->scene, &plan, spec->width, spec->height, &js->renderer, err) ||
+	struct aa_scene_upload *upload = aa_engine_scene_upload(js->engine, js->scene, err);
+	if (!upload ||
+	    aa_renderer_create(gpu, js->scene, upload, &plan, spec->width, spec->height, &js->renderer, err) ||
 	    aa_gpu_timer_create(gpu, &js->timer, err) ||
 	    aa_reference_create(js->renderer, spec->reference_samples, &js->reference, err))
 		return -1;

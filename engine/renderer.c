@@ -29,94 +29,6 @@ int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, in
 	return 0;
 }
 
-static int upload_geometry(struct aa_renderer *r, struct aa_error *err)
-{
-	const struct aa_scene *s = r->scene;
-	size_t nv = 0, ni = 0;
-	for (int i = 0; i < s->mesh_count; i++) {
-		nv += s->meshes[i].vertex_count;
-		ni += s->meshes[i].index_count;
-	}
-	if (nv == 0 || ni == 0)
-		return aa_error_set(err, AA_ERR_INVALID, "objects", "the scene has no geometry to draw");
-	struct aa_vertex *v = malloc(nv * sizeof *v);
-	uint32_t *idx = malloc(ni * sizeof *idx);
-	r->mesh_first_index = calloc((size_t)s->mesh_count, sizeof(uint32_t));
-	r->mesh_vertex_offset = calloc((size_t)s->mesh_count, sizeof(uint32_t));
-	if (!v || !idx || !r->mesh_first_index || !r->mesh_vertex_offset) {
-		free(v);
-		free(idx);
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory uploading the scene");
-	}
-	size_t ov = 0, oi = 0;
-	for (int i = 0; i < s->mesh_count; i++) {
-		const struct aa_mesh *m = &s->meshes[i];
-		r->mesh_vertex_offset[i] = (uint32_t)ov;
-		r->mesh_first_index[i] = (uint32_t)oi;
-		memcpy(v + ov, m->vertices, m->vertex_count * sizeof *v);
-		memcpy(idx + oi, m->indices, m->index_count * sizeof *idx);
-		ov += m->vertex_count;
-		oi += m->index_count;
-	}
-	int rc = aa_gpu_buffer_upload(r->gpu, &r->vertices, v, nv * sizeof *v, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-				      err);
-	if (rc == 0)
-		rc = aa_gpu_buffer_upload(r->gpu, &r->indices, idx, ni * sizeof *idx,
-					  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, err);
-	free(v);
-	free(idx);
-	return rc;
-}
-
-static int upload_materials(struct aa_renderer *r, struct aa_error *err)
-{
-	const struct aa_scene *s = r->scene;
-	int n = s->material_count > 0 ? s->material_count : 1;
-	struct aa_material_gpu *g = calloc((size_t)n, sizeof *g);
-	if (!g)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-	for (int i = 0; i < s->material_count; i++) {
-		const struct aa_material *m = &s->materials[i];
-		memcpy(g[i].base_color, m->base_color, sizeof g[i].base_color);
-		memcpy(g[i].color2, m->color2, 3 * sizeof(float));
-		g[i].color2[3] = (float)m->pattern;
-		g[i].pattern[0] = m->scale[0];
-		g[i].pattern[1] = m->scale[1];
-		g[i].pattern[2] = m->stripe_width;
-		g[i].shading[0] = m->specular;
-		g[i].shading[1] = m->roughness;
-		g[i].shading[2] = m->alpha_cutoff;
-		g[i].shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0));
-	}
-	int rc = aa_gpu_buffer_upload(r->gpu, &r->materials, g, (VkDeviceSize)n * sizeof *g,
-				      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, err);
-	free(g);
-	return rc;
-}
-
-static int upload_textures(struct aa_renderer *r, struct aa_error *err)
-{
-	const struct aa_scene *s = r->scene;
-	r->textures = calloc((size_t)s->texture_count + 1, sizeof *r->textures);
-	if (!r->textures)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-	VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-	for (int i = 0; i < s->texture_count; i++) {
-		const struct aa_texture *t = &s->textures[i];
-		if (aa_gpu_image_create(r->gpu, &r->textures[i], t->width, t->height, VK_FORMAT_R8G8B8A8_SRGB, usage,
-					1, (uint32_t)t->mip_levels, err) ||
-		    aa_gpu_image_upload_rgba8(r->gpu, &r->textures[i], (const uint8_t *const *)t->mips, err))
-			return -1;
-	}
-	static const uint8_t white[4] = {255, 255, 255, 255};
-	const uint8_t *levels[1] = {white};
-	struct aa_gpu_image *w = &r->textures[s->texture_count];
-	if (aa_gpu_image_create(r->gpu, w, 1, 1, VK_FORMAT_R8G8B8A8_SRGB, usage, 1, 1, err) ||
-	    aa_gpu_image_upload_rgba8(r->gpu, w, levels, err))
-		return -1;
-	return 0;
-}
-
 /* The shadow map, or a 1x1 cleared stand-in so the descriptor is always valid. */
 static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 {
@@ -255,9 +167,9 @@ static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 			return -1;
 		VkDescriptorSet set = r->texture_sets[i];
 		aa_gpu_write_buffer(r->gpu, set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &r->frame_ubo);
-		aa_gpu_write_buffer(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->materials);
+		aa_gpu_write_buffer(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->upload->materials);
 		aa_gpu_write_image(r->gpu, set, 2, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-				   r->gpu->sampler_linear, &r->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+				   r->gpu->sampler_linear, &r->upload->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_image(r->gpu, set, 3, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				   r->gpu->sampler_shadow, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_buffer(r->gpu, set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->prev_models);
@@ -265,20 +177,21 @@ static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 	return 0;
 }
 
-int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_frame_plan *plan,
-		       int width, int height, struct aa_renderer **out, struct aa_error *err)
+int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_scene_upload *upload,
+		       const struct aa_frame_plan *plan, int width, int height, struct aa_renderer **out,
+		       struct aa_error *err)
 {
 	struct aa_renderer *r = calloc(1, sizeof *r);
 	if (!r)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	r->gpu = gpu;
 	r->scene = scene;
+	r->upload = upload;
 	r->plan = *plan;
 	r->width = width;
 	r->height = height;
 	r->models = calloc((size_t)(scene->object_count ? scene->object_count : 1), sizeof *r->models);
-	if (!r->models || upload_geometry(r, err) || upload_materials(r, err) || upload_textures(r, err) ||
-	    aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
+	if (!r->models || aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
 				 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, err) ||
 	    aa_gpu_buffer_create(gpu, &r->prev_models,
 				 sizeof(mat4) * (VkDeviceSize)(scene->object_count ? scene->object_count : 1),
@@ -317,18 +230,9 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	if (r->shadow_framebuffer)
 		vkDestroyFramebuffer(g->device, r->shadow_framebuffer, NULL);
 	aa_gpu_image_destroy(g, &r->shadow_map);
-	if (r->textures)
-		for (int i = 0; i <= r->scene->texture_count; i++)
-			aa_gpu_image_destroy(g, &r->textures[i]);
-	aa_gpu_buffer_destroy(g, &r->vertices);
-	aa_gpu_buffer_destroy(g, &r->indices);
-	aa_gpu_buffer_destroy(g, &r->materials);
 	aa_gpu_buffer_destroy(g, &r->frame_ubo);
 	aa_gpu_buffer_destroy(g, &r->prev_models);
-	free(r->textures);
 	free(r->texture_sets);
-	free(r->mesh_first_index);
-	free(r->mesh_vertex_offset);
 	free(r->models);
 	free(r);
 }
@@ -458,8 +362,8 @@ static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struc
 			 const struct aa_gpu_pipeline *cutout, float jx, float jy)
 {
 	VkDeviceSize zero = 0;
-	vkCmdBindVertexBuffers(cmd, 0, 1, &r->vertices.buffer, &zero);
-	vkCmdBindIndexBuffer(cmd, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+	vkCmdBindVertexBuffers(cmd, 0, 1, &r->upload->vertices.buffer, &zero);
+	vkCmdBindIndexBuffer(cmd, r->upload->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
 	/* opaque objects first, cut-outs with the discard pipeline after them */
 	for (int pass = 0; pass < 2; pass++) {
 		const struct aa_gpu_pipeline *p = pass == 0 ? opaque : cutout;
@@ -477,8 +381,8 @@ static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struc
 						&set, 0, NULL);
 			push_object(r, cmd, o, jx, jy);
 			const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
-			vkCmdDrawIndexed(cmd, m->index_count, 1, r->mesh_first_index[obj->mesh_index],
-					 (int32_t)r->mesh_vertex_offset[obj->mesh_index], 0);
+			vkCmdDrawIndexed(cmd, m->index_count, 1, r->upload->mesh_first_index[obj->mesh_index],
+					 (int32_t)r->upload->mesh_vertex_offset[obj->mesh_index], 0);
 		}
 	}
 }

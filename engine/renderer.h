@@ -9,6 +9,7 @@
 #include "gpu/gpu.h"
 #include "job.h"
 #include "scene/scene.h"
+#include "scene_upload.h"
 
 #define AA_MAX_LIGHTS 8
 #define AA_SCENE_COLOR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
@@ -111,9 +112,8 @@ struct aa_renderer {
 	struct aa_frame_plan plan;
 	int width, height;
 
-	struct aa_gpu_buffer vertices, indices, materials, frame_ubo;
-	uint32_t *mesh_first_index, *mesh_vertex_offset;
-	struct aa_gpu_image *textures;   /* scene->texture_count, plus white at [texture_count] */
+	const struct aa_scene_upload *upload; /* the scene's buffers and textures, borrowed from the engine */
+	struct aa_gpu_buffer frame_ubo;
 	struct aa_gpu_image shadow_map;  /* AA_SHADOW_MAP_SIZE^2 when the plan has shadows, else 1x1 */
 	VkFramebuffer shadow_framebuffer;
 	VkRenderPass shadow_pass;
@@ -132,8 +132,9 @@ struct aa_renderer {
 	bool inject_nonfinite;           /* stability tests: the next set_frame poisons some pixels */
 };
 
-int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_frame_plan *plan,
-		       int width, int height, struct aa_renderer **out, struct aa_error *err);
+int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_scene_upload *upload,
+		       const struct aa_frame_plan *plan, int width, int height, struct aa_renderer **out,
+		       struct aa_error *err);
 void aa_renderer_destroy(struct aa_renderer *r);
 
 /* Sets the camera and object transforms for time t and writes the frame uniforms. Call before recording

@@ -144,6 +144,7 @@ struct aa_camera_path {
 };
 
 struct aa_scene {
+	uint64_t uid;           /* unique per loaded scene in this process: the key of GPU caches */
 	char name[AA_NAME_MAX];
 	char file[1024];        /* "" for scenes built in code */
 	char description[256];
@@ -176,6 +177,8 @@ int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
 int aa_scene_load_string(const char *json_text, const char *display_name, const char *base_dir,
 			 struct aa_scene **out, struct aa_error *err);
 void aa_scene_free(struct aa_scene *scene);
+/* A new process-wide scene identity (thread-safe; never 0). */
+uint64_t aa_scene_new_uid(void);
 
 /* Finds a camera path by name: "default" is paths[0]; "static" is paths[0]'s first camera held (the
  * caller passes hold_first = true to aa_camera_path_eval for "static"). NULL when there is no such path. */

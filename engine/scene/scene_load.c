@@ -613,6 +613,7 @@ static int load_json(json_t *root, const char *display, const char *base_dir, co
 		aa_scene_free(L.sc);
 		return -1;
 	}
+	L.sc->uid = aa_scene_new_uid();
 	*out = L.sc;
 	return 0;
 }

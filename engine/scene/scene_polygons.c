@@ -118,6 +118,7 @@ int aa_scene_from_polygons(const struct aa_polygon2d *polys, int poly_count, int
 	snprintf(sc->paths[0].name, sizeof sc->paths[0].name, "main");
 	sc->paths[0].kind = AA_PATH_STATIC;
 	sc->paths[0].key_count = 1;
+	sc->uid = aa_scene_new_uid();
 	*out = sc;
 	return 0;
 }

@@ -82,3 +82,9 @@ size_t aa_scene_bytes(const struct aa_scene *scene)
 	}
 	return n;
 }
+
+uint64_t aa_scene_new_uid(void)
+{
+	static uint64_t next;
+	return __atomic_add_fetch(&next, 1, __ATOMIC_RELAXED);
+}

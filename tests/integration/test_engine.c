@@ -218,6 +218,47 @@ static void test_virtual_msaa_matches_hardware(void **state)
 	fixture_free(r);
 }
 
+static int hash_frames(const struct aa_event *ev, void *user)
+{
+	uint64_t *h = user;
+	if (ev->type == AA_EVENT_METHOD_FRAME)
+		for (size_t i = 0; i < (size_t)ev->image->width * ev->image->height * 4; i++)
+			*h = (*h ^ ev->image->pixels[i]) * 1099511628211ull;
+	return 0;
+}
+
+/* A second job on the same loaded scene finds it already on the GPU, and renders the same images. */
+static void test_uploaded_scene_is_reused(void **state)
+{
+	(void)state;
+	char file[1024];
+	struct aa_error err = {0};
+	struct aa_scene *scene;
+	assert_int_equal(aa_scene_resolve("moving-sphere", file, sizeof file, &err), 0);
+	assert_int_equal(aa_scene_load(file, &scene, &err), 0);
+	const char *methods[] = {"none", "msaa:4"};
+	struct aa_job_spec spec;
+	fixture_spec(&spec, "moving-sphere", methods, 2, 64, 36, 2, 2);
+	struct aa_upload_stats before = aa_engine_upload_stats(fixture_engine);
+	uint64_t h1 = 14695981039346656037ull, h2 = h1;
+	fixture_free(fixture_run(&spec, scene, hash_frames, &h1));
+	fixture_free(fixture_run(&spec, scene, hash_frames, &h2));
+	struct aa_upload_stats after = aa_engine_upload_stats(fixture_engine);
+	printf("  uploads: %llu misses, %llu hits, %llu bytes cached\n",
+	       (unsigned long long)(after.misses - before.misses), (unsigned long long)(after.hits - before.hits),
+	       (unsigned long long)after.bytes);
+	assert_int_equal(after.misses - before.misses, 1);
+	assert_int_equal(after.hits - before.hits, 1);
+	assert_true(after.bytes > 0);
+	assert_true(h1 == h2);
+	/* a tiny budget keeps only the scene in use */
+	aa_engine_set_upload_budget(fixture_engine, 1);
+	fixture_free(fixture_run(&spec, scene, NULL, NULL));
+	assert_int_equal(aa_engine_upload_stats(fixture_engine).scenes, 1);
+	aa_engine_set_upload_budget(fixture_engine, 256ull << 20);
+	aa_scene_free(scene);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -226,6 +267,7 @@ int main(void)
 		cmocka_unit_test(test_ssaa_beats_none),
 		cmocka_unit_test(test_every_scene_every_method_finite),
 		cmocka_unit_test(test_virtual_msaa_matches_hardware),
+		cmocka_unit_test(test_uploaded_scene_is_reused),
 	};
 	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }
