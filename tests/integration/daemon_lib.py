@@ -177,3 +177,21 @@ def http_get(port, path, method="GET", headers=None):
     body = r.read()
     conn.close()
     return r.status, r.getheader("Content-Type"), body
+
+
+def crashed(d, e):
+    """The test body raised: that is a failure; show the daemon's log."""
+    import traceback
+    traceback.print_exc()
+    check(False, "test ran to the end: %s" % e)
+    if d:
+        print(d.read_log()[-3000:])
+
+
+def check_log_and_cleanup(d):
+    """Fails on any sanitizer report in the daemon's log, then removes the daemon's files."""
+    if d:
+        log = d.read_log()
+        if "Sanitizer" in log or "runtime error" in log:
+            check(False, "sanitizer report in the daemon log:\n" + log[-3000:])
+        d.cleanup()

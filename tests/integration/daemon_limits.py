@@ -9,7 +9,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from daemon_lib import Client, Daemon, SMALL_JOB, check, finish, http_get, wait_state
+from daemon_lib import Client, Daemon, SMALL_JOB, check, finish, http_get, wait_state, check_log_and_cleanup, crashed
 
 d = None
 tmp = tempfile.mkdtemp(prefix="aalabd-limits.")
@@ -71,16 +71,7 @@ try:
     c.close()
     check(d.stop() == 0, "aalabd exits 0")
 except Exception as e:
-    import traceback
-    traceback.print_exc()
-    check(False, "test ran to the end: %s" % e)
-    if d:
-        print(d.read_log()[-3000:])
+    crashed(d, e)
 finally:
-    if d:
-        log = d.read_log()
-        if "Sanitizer" in log or "runtime error" in log:
-            check(False, "sanitizer report:\n" + log[-3000:])
-        d.cleanup()
-    shutil.rmtree(tmp, ignore_errors=True)
+    check_log_and_cleanup(d)
 finish()

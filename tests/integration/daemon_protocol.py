@@ -11,7 +11,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from daemon_lib import Client, Daemon, SMALL_JOB, check, finish, wait_state
+from daemon_lib import Client, Daemon, SMALL_JOB, check, finish, wait_state, check_log_and_cleanup, crashed
 
 tmp_token = None
 d = None
@@ -164,15 +164,8 @@ try:
     status = d.stop()
     check(status == 0, "SIGTERM: aalabd exits 0 (and ASan finds no leak), status %s" % status)
     check(not os.path.exists(d.socket), "the socket file is removed on exit")
-except Exception as e:  # a crash of the test is a failure, with the daemon's log
-    import traceback
-    traceback.print_exc()
-    check(False, "test ran to the end: %s" % e)
-    if d:
-        print(d.read_log()[-3000:])
+except Exception as e:
+    crashed(d, e)
 finally:
-    if d:
-        if "ERROR: AddressSanitizer" in d.read_log() or "runtime error" in d.read_log():
-            check(False, "sanitizer report in the daemon log:\n" + d.read_log()[-3000:])
-        d.cleanup()
+    check_log_and_cleanup(d)
 finish()

@@ -9,7 +9,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from daemon_lib import Daemon, SMALL_JOB, check, finish, wait_state
+from daemon_lib import Daemon, SMALL_JOB, check, finish, wait_state, check_log_and_cleanup, crashed
 
 d = None
 try:
@@ -57,15 +57,7 @@ try:
     log = d.read_log()
     check("stopping" in log, "the log says it is stopping")
 except Exception as e:
-    import traceback
-    traceback.print_exc()
-    check(False, "test ran to the end: %s" % e)
-    if d:
-        print(d.read_log()[-3000:])
+    crashed(d, e)
 finally:
-    if d:
-        log = d.read_log()
-        if "ERROR: AddressSanitizer" in log or "runtime error" in log:
-            check(False, "sanitizer report in the daemon log:\n" + log[-3000:])
-        d.cleanup()
+    check_log_and_cleanup(d)
 finish()
