@@ -24,6 +24,8 @@ void config_defaults(struct config *c)
 			 getenv("HOME") ? getenv("HOME") : "/tmp");
 	c->max_request_bytes = 1 << 20;
 	c->max_connections = 256;
+	c->max_connections_per_peer = 64;
+	c->hello_timeout_s = 10;
 	c->max_jobs_per_client = 32;
 	c->max_queued_jobs = 1000;
 	c->max_job_budget = 2e11;
@@ -51,6 +53,8 @@ static const struct key keys[] = {
 	STR("http", http), STR("web-dir", web_dir), STR("device", device),
 	NUM("max-request-bytes", K_SIZE, max_request_bytes, 1024, 1 << 30),
 	NUM("max-connections", K_INT, max_connections, 1, 100000),
+	NUM("max-connections-per-peer", K_INT, max_connections_per_peer, 1, 100000),
+	NUM("hello-timeout", K_INT, hello_timeout_s, 1, 86400),
 	NUM("max-jobs-per-client", K_INT, max_jobs_per_client, 1, 1000000),
 	NUM("max-queued-jobs", K_INT, max_queued_jobs, 1, 1000000),
 	NUM("max-job-budget", K_DOUBLE, max_job_budget, 1, 1e18),

@@ -20,19 +20,22 @@ size_t conn_pending(const struct conn *c)
 	return c->out_len - c->out_head;
 }
 
-static void peer_name(struct conn *c, bool tcp)
+/* Names the peer for the per-peer limits and jobs-per-client: its uid on a Unix socket (whatever the
+ * listener, systemd may pass either kind), its address on TCP. */
+static void peer_name(struct conn *c)
 {
-	if (!tcp) {
+	struct sockaddr_storage ss;
+	socklen_t len = sizeof ss;
+	if (getsockname(c->fd, (struct sockaddr *)&ss, &len) == 0 && ss.ss_family == AF_UNIX) {
 		struct ucred cred;
-		socklen_t len = sizeof cred;
+		len = sizeof cred;
 		if (getsockopt(c->fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0)
 			snprintf(c->peer, sizeof c->peer, "uid:%u", (unsigned)cred.uid);
 		else
 			snprintf(c->peer, sizeof c->peer, "unix");
 		return;
 	}
-	struct sockaddr_storage ss;
-	socklen_t len = sizeof ss;
+	len = sizeof ss;
 	char host[INET6_ADDRSTRLEN] = "?";
 	if (getpeername(c->fd, (struct sockaddr *)&ss, &len) == 0) {
 		if (ss.ss_family == AF_INET)
@@ -41,6 +44,29 @@ static void peer_name(struct conn *c, bool tcp)
 			inet_ntop(AF_INET6, &((struct sockaddr_in6 *)&ss)->sin6_addr, host, sizeof host);
 	}
 	snprintf(c->peer, sizeof c->peer, "tcp:%s", host);
+}
+
+/* Open connections of one peer on one listener. */
+static int peer_connections(struct daemon *d, const struct listener *l, const char *peer)
+{
+	int n = 0;
+	for (struct conn *c = d->conns; c; c = c->next)
+		n += !c->closed && c->listener == l && !strcmp(c->peer, peer);
+	return n;
+}
+
+/* A refused connection gets one line saying why (an error line, or a 503) and is closed. */
+static void refuse(const struct listener *l, int fd, const char *why)
+{
+	char msg[512];
+	int n = l->kind == CONN_HTTP
+		? snprintf(msg, sizeof msg, "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\n"
+			   "Content-Length: %zu\r\nConnection: close\r\n\r\n%s\n", strlen(why) + 1, why)
+		: snprintf(msg, sizeof msg, "{\"ok\":false,\"error\":{\"code\":\"limit\",\"message\":\"%s\","
+			   "\"path\":\"\"}}\n", why);
+	ssize_t w = send(fd, msg, (size_t)n, MSG_NOSIGNAL | MSG_DONTWAIT);
+	(void)w;
+	close(fd);
 }
 
 void conn_accept(struct loop *loop, int fd, int events, void *data)
@@ -52,14 +78,10 @@ void conn_accept(struct loop *loop, int fd, int events, void *data)
 		int cfd = accept4(fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
 		if (cfd < 0)
 			return; /* EAGAIN, or a transient error (EMFILE): the next poll tries again */
-		if (d->conn_count >= d->cfg.max_connections) {
-			static const char proto[] = "{\"ok\":false,\"error\":{\"code\":\"limit\",\"message\":\"too many "
-						    "connections; try again later\",\"path\":\"\"}}\n";
-			static const char http[] = "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\n"
-						   "Connection: close\r\n\r\n";
-			ssize_t n = l->kind == CONN_HTTP ? write(cfd, http, sizeof http - 1) : write(cfd, proto, sizeof proto - 1);
-			(void)n;
-			close(cfd);
+		/* Each listener has its own budget (dashboards cannot take the protocol socket's slots) and each
+		 * peer its own share of it (one careless client cannot take everyone's). */
+		if (l->conn_count >= d->cfg.max_connections) {
+			refuse(l, cfd, "too many connections; try again later");
 			continue;
 		}
 		struct conn *c = calloc(1, sizeof *c);
@@ -67,16 +89,26 @@ void conn_accept(struct loop *loop, int fd, int events, void *data)
 			close(cfd);
 			continue;
 		}
-		c->d = d;
 		c->fd = cfd;
+		peer_name(c);
+		if (peer_connections(d, l, c->peer) >= d->cfg.max_connections_per_peer) {
+			char why[160];
+			snprintf(why, sizeof why, "too many connections from %s (max-connections-per-peer %d); "
+				 "try again later", c->peer, d->cfg.max_connections_per_peer);
+			refuse(l, cfd, why);
+			free(c);
+			continue;
+		}
+		c->d = d;
 		c->kind = l->kind;
+		c->listener = l;
 		c->via_tcp = l->tcp;
 		c->authed = !l->tcp || !d->token[0];
-		c->last_input_ms = c->last_output_ms = loop_now_ms();
-		peer_name(c, l->tcp);
+		c->accepted_ms = c->last_input_ms = c->last_output_ms = loop_now_ms();
 		c->next = d->conns;
 		d->conns = c;
 		d->conn_count++;
+		l->conn_count++;
 		d->stats.connections_total++;
 		loop_watch(loop, cfd, LOOP_READ, conn_io, c);
 	}
@@ -88,6 +120,12 @@ void conn_close(struct conn *c)
 		return;
 	c->closed = true;
 	loop_unwatch(c->d->loop, c->fd);
+	/* Input left unread would make close() send a reset, which can discard the reply still on its way
+	 * to the client: read what has arrived, then send FIN. */
+	char drain[4096];
+	for (int i = 0; i < 16 && recv(c->fd, drain, sizeof drain, MSG_DONTWAIT) > 0; i++)
+		;
+	shutdown(c->fd, SHUT_WR);
 	close(c->fd);
 	c->fd = -1;
 	if (c->watch_job) {
@@ -108,6 +146,8 @@ void conns_sweep(struct daemon *d)
 		}
 		*p = c->next;
 		d->conn_count--;
+		if (c->listener)
+			c->listener->conn_count--;
 		json_decref(c->pending);
 		json_decref(c->watch_tag);
 		free(c->in);
@@ -116,12 +156,24 @@ void conns_sweep(struct daemon *d)
 	}
 }
 
+void conn_close_after_flush(struct conn *c)
+{
+	c->close_after_flush = true;
+	if (!c->closed && !conn_pending(c) && !c->watch_job)
+		conn_close(c);
+}
+
 /* Reads only while the client can take replies; never after its end of input (poll would report it
- * again and again). */
+ * again and again). A connection that is to close and has nothing left to send closes here: watching
+ * nothing, it would hold its slot until the idle timeout. */
 static void update_interest(struct conn *c)
 {
 	if (c->closed)
 		return;
+	if (c->close_after_flush && !conn_pending(c) && !c->watch_job) {
+		conn_close(c);
+		return;
+	}
 	int mask = conn_pending(c) ? LOOP_WRITE : 0;
 	if (!c->eof && !c->close_after_flush && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
 		mask |= LOOP_READ;
@@ -323,11 +375,8 @@ static void conn_read(struct conn *c)
 					       "(every request ends with a newline)");
 			c->in_len = 0;
 			c->eof = true;
-			c->close_after_flush = true;
-			if (!conn_pending(c) && !c->watch_job)
-				conn_close(c);
-			else
-				update_interest(c);
+			conn_close_after_flush(c);
+			update_interest(c);
 			return;
 		}
 		c->in_len += (size_t)n;
@@ -389,11 +438,14 @@ void conns_tick(struct daemon *d)
 				protocol_error(c, NULL, "timeout", c->pending ? "payload" : "",
 					       "request not completed within %d s (request-timeout)", cfg->request_timeout_s);
 			c->in_len = 0;
-			c->close_after_flush = true;
-			if (!conn_pending(c))
-				conn_close(c);
-			else
-				update_interest(c);
+			conn_close_after_flush(c);
+			update_interest(c);
+		} else if (c->kind == CONN_PROTOCOL && !c->authed && !c->close_after_flush &&
+			   now - c->accepted_ms > cfg->hello_timeout_s * 1000.0) {
+			protocol_error(c, NULL, "timeout", "token", "no hello with the token within %d s (hello-timeout)",
+				       cfg->hello_timeout_s);
+			conn_close_after_flush(c);
+			update_interest(c);
 		} else if (!c->watch_job && !conn_pending(c) && now - c->last_input_ms > cfg->idle_timeout_s * 1000.0) {
 			conn_close(c);
 		}

@@ -24,7 +24,9 @@ struct config {
 	char config_file[1024];
 	char device[128];
 	size_t max_request_bytes;   /* one JSON line, and one announced payload */
-	int max_connections;
+	int max_connections;          /* per listener: HTTP cannot take the protocol socket's slots */
+	int max_connections_per_peer; /* per listener and peer (uid on the Unix socket, address on TCP) */
+	int hello_timeout_s;          /* a TCP client that has not shown its token by then is dropped */
 	int max_jobs_per_client;    /* queued + running */
 	int max_queued_jobs;
 	double max_job_budget;      /* width x height x frames x (reference samples + methods) */
@@ -49,11 +51,13 @@ int config_set(struct config *c, const char *name, const char *value, char *err,
 enum conn_kind { CONN_PROTOCOL, CONN_HTTP };
 
 struct job;
+struct listener;
 
 struct conn {
 	struct daemon *d;
 	int fd;
 	enum conn_kind kind;
+	struct listener *listener; /* NULL once the daemon stops listening (draining) */
 	bool via_tcp;             /* the bearer token must be shown in hello */
 	bool authed;
 	char peer[64];            /* "uid:1000" or "tcp:127.0.0.1" (jobs-per-client) */
@@ -65,7 +69,7 @@ struct conn {
 	json_t *pending;          /* the request that announced the payload */
 	char *out;                /* bytes queued to send: out[out_head .. out_len) */
 	size_t out_head, out_len, out_cap;
-	double last_input_ms, last_output_ms, partial_since_ms;
+	double accepted_ms, last_input_ms, last_output_ms, partial_since_ms;
 	bool close_after_flush, closed, eof;
 	/* the one watch this connection may run */
 	struct job *watch_job;
@@ -83,6 +87,7 @@ struct listener {
 	enum conn_kind kind;
 	bool tcp;
 	bool from_systemd;
+	int conn_count;           /* open connections accepted here (max-connections) */
 	char name[300];
 };
 
@@ -111,6 +116,9 @@ void conn_accept(struct loop *loop, int fd, int events, void *data);
 void conn_send(struct conn *c, const void *data, size_t size);
 void conn_send_json(struct conn *c, json_t *msg); /* steals msg */
 void conn_close(struct conn *c);
+/* The connection ends once its queued output is sent (and its watch, if any, has ended): at once when
+ * nothing is queued. Every path that decides to end a connection goes through here. */
+void conn_close_after_flush(struct conn *c);
 void conns_sweep(struct daemon *d); /* frees closed connections */
 void conn_finish_watch(struct conn *c); /* closes a half-closed connection once its watch ended */
 void conns_tick(struct daemon *d);

@@ -254,7 +254,7 @@ static void respond(struct conn *c, struct response *r, bool head, bool keep_ali
 		conn_send(c, r->body, r->size);
 	free(r->body);
 	if (!keep_alive)
-		c->close_after_flush = true;
+		conn_close_after_flush(c);
 }
 
 /* Handles every complete request in the input buffer. */

@@ -66,7 +66,7 @@ long protocol_payload_size(struct conn *c, json_t *msg)
 	json_t *tag = json_object_get(msg, "tag");
 	if (!json_is_integer(p) || json_integer_value(p) < 0) {
 		protocol_error(c, tag, "bad_request", "payload", "payload is the number of bytes that follow the line");
-		c->close_after_flush = true; /* the stream cannot be resynchronised */
+		conn_close_after_flush(c); /* the stream cannot be resynchronised */
 		return -1;
 	}
 	json_int_t n = json_integer_value(p);
@@ -141,7 +141,7 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 		if (!token_equal(json_string_value(json_object_get(msg, "token")), c->d->token)) {
 			protocol_error(c, tag, "unauthorized", "token", "TCP clients must send the bearer token of the "
 				       "daemon's token file in hello");
-			c->close_after_flush = true;
+			conn_close_after_flush(c);
 			return;
 		}
 		c->authed = true;
