@@ -13,7 +13,12 @@ AT_OFFSET(vec4)
 // so they read a mip level finer by log2(sqrt(N)); otherwise it would converge to trilinear blur.
 layout(constant_id = 2) const float TEXTURE_LOD_BIAS = 0.0;
 
-vec4 surface_color(Material m, vec2 uv)
+// Texture gradients are passed in, not taken from the scaled coordinate inside the branch below: lavapipe
+// (Mesa 22.3) reads the storage-buffer material as zero in helper lanes, so the implicit derivative of
+// `uv * m.pattern.xy` across a triangle's edge was huge and edge pixels took the coarsest mip (the bright
+// one-pixel rims on hard-edges' sign). Gradients of the interpolated uv are right in every lane; virtual
+// samples also pass the pixel centre's gradients when uv itself is moved to a shading point.
+vec4 surface_color_grad(Material m, vec2 uv, vec2 uv_dx, vec2 uv_dy)
 {
 	uint pattern = uint(m.color2.w);
 	vec4 c = m.base_color;
@@ -25,9 +30,16 @@ vec4 surface_color(Material m, vec2 uv)
 		if (fract(uv.x * m.pattern.x) < m.pattern.z)
 			c.rgb = m.color2.rgb;
 	} else if (pattern == PATTERN_TEXTURE) {
-		c *= texture(material_texture, uv * m.pattern.xy, TEXTURE_LOD_BIAS); // sRGB view: decoded by the sampler
+		// the LOD bias as a gradient scale: the same level, since the level is log2 of the gradient
+		vec2 scale = m.pattern.xy * exp2(TEXTURE_LOD_BIAS);
+		c *= textureGrad(material_texture, uv * m.pattern.xy, uv_dx * scale, uv_dy * scale); // sRGB view
 	}
 	return c;
+}
+
+vec4 surface_color(Material m, vec2 uv)
+{
+	return surface_color_grad(m, uv, dFdx(uv), dFdy(uv));
 }
 
 float shadow_visibility(vec3 world, float ndotl)

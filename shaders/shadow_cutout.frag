@@ -9,8 +9,10 @@ void main()
 {
 	Material m = materials[draw.material];
 	float a = m.base_color.a;
+	// explicit gradients: see surface_color_grad in shading.glsl (helper lanes read the material as zero)
+	vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
 	if (uint(m.color2.w) == PATTERN_TEXTURE)
-		a *= texture(material_texture, in_uv * m.pattern.xy).a;
+		a *= textureGrad(material_texture, in_uv * m.pattern.xy, uv_dx * m.pattern.xy, uv_dy * m.pattern.xy).a;
 	if (a < m.shading.z)
 		discard;
 }
