@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gpu/sample_positions.h"
 #include "renderer.h"
 
 void aa_method_result_add_memory(struct aa_method_result *info, const char *name, uint64_t bytes)
@@ -98,8 +99,41 @@ static const char *const scene_output_names[AA_SCENE_OUTPUT_COUNT] = {
 static bool desc_equal(const struct aa_scene_target_desc *a, const struct aa_scene_target_desc *b)
 {
 	return a->samples == b->samples && a->outputs == b->outputs && a->depth_readable == b->depth_readable &&
-	       a->edge_distances == b->edge_distances && a->shade_at_pixel_centre == b->shade_at_pixel_centre &&
+	       a->edge_distances == b->edge_distances && a->virtual_samples == b->virtual_samples &&
+	       a->geometry_at_sample == b->geometry_at_sample && a->alpha_to_coverage == b->alpha_to_coverage &&
 	       a->texture_lod_bias == b->texture_lod_bias;
+}
+
+/* Specialization constants of the scene fragment shaders, one 4-byte value per constant_id in order: the
+ * alpha test, the G-buffer's geometry_at_sample, the texture LOD bias, then shading_point.glsl's mode,
+ * pattern size, alpha to coverage and the pattern's positions. IDs a shader lacks are ignored. */
+#define SCENE_CONSTANT_COUNT 22
+struct scene_constants {
+	VkBool32 alpha_test, geometry_at_sample;
+	float lod_bias;
+	int32_t mode, pattern_samples;
+	VkBool32 alpha_to_coverage;
+	float pattern[16]; /* x0, y0, ... x7, y7 */
+};
+_Static_assert(sizeof(struct scene_constants) == SCENE_CONSTANT_COUNT * 4, "one 4-byte value per constant");
+
+static void scene_constants_fill(const struct aa_scene_target_desc *d, struct scene_constants *c,
+				 VkSpecializationMapEntry *entries, VkSpecializationInfo *spec)
+{
+	memset(c, 0, sizeof *c);
+	c->geometry_at_sample = d->geometry_at_sample;
+	c->lod_bias = d->texture_lod_bias;
+	c->mode = d->samples > 1 ? 1 : d->virtual_samples ? 2 : 0; /* SHADING_POINT_HARDWARE, _VIRTUAL */
+	c->pattern_samples = d->samples > 1 ? (int32_t)d->samples : d->virtual_samples ? (int32_t)d->virtual_samples : 1;
+	c->alpha_to_coverage = d->alpha_to_coverage;
+	const float (*pos)[2] = aa_standard_sample_positions(c->pattern_samples);
+	for (int i = 0; i < 8; i++) {
+		c->pattern[2 * i] = pos && i < c->pattern_samples ? pos[i][0] : 0.5f;
+		c->pattern[2 * i + 1] = pos && i < c->pattern_samples ? pos[i][1] : 0.5f;
+	}
+	for (uint32_t i = 0; i < SCENE_CONSTANT_COUNT; i++)
+		entries[i] = (VkSpecializationMapEntry){i, 4 * i, 4};
+	*spec = (VkSpecializationInfo){SCENE_CONSTANT_COUNT, entries, sizeof *c, c};
 }
 
 /* The render pass and pipelines of one kind of scene target, created on first use. */
@@ -114,6 +148,10 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 		return aa_error_set(err, AA_ERR_GPU, "", "the device cannot render %u samples per pixel", d->samples);
 	if (d->outputs && (d->samples > 1 || d->edge_distances))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "G-buffer outputs need a plain single-sample target");
+	if (d->virtual_samples && (d->samples > 1 || d->edge_distances || d->virtual_samples > 8 ||
+				   !aa_standard_sample_positions((int)d->virtual_samples)))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "virtual samples: a single-sample target and 2, 4 or 8 "
+				    "positions");
 	struct aa_scene_variant *v = &r->variants[r->variant_count];
 	memset(v, 0, sizeof *v);
 	v->desc = *d;
@@ -131,15 +169,17 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 	}
 	if (aa_gpu_render_pass_create(r->gpu, &pass, &v->pass, err))
 		return -1;
-	struct { VkBool32 alpha_test, centre; float lod_bias; } constants = {VK_FALSE, d->shade_at_pixel_centre,
-									   d->texture_lod_bias};
-	VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(VkBool32)}, {1, sizeof(VkBool32), sizeof(VkBool32)},
-					       {2, 2 * sizeof(VkBool32), sizeof(float)}};
-	VkSpecializationInfo spec = {3, entries, sizeof constants, &constants};
+	struct scene_constants constants;
+	VkSpecializationMapEntry entries[SCENE_CONSTANT_COUNT];
+	VkSpecializationInfo spec;
+	scene_constants_fill(d, &constants, entries, &spec);
+	const char *geom = d->edge_distances ? "gbaa.geom" : NULL;
+	if (d->virtual_samples) /* the barycentric coordinates shading_point.glsl tests coverage with */
+		geom = d->outputs ? "virtual_sample_gbuffer.geom" : "virtual_sample.geom";
 	struct aa_gpu_graphics_desc g = {
 		.vert = d->outputs ? "gbuffer.vert" : "scene.vert",
 		.frag = d->outputs ? "gbuffer.frag" : d->edge_distances ? "gbaa.frag" : "scene.frag",
-		.geom = d->edge_distances ? "gbaa.geom" : NULL, .vertex_layout = AA_VERTEX_SCENE,
+		.geom = geom, .vertex_layout = AA_VERTEX_SCENE,
 		.render_pass = v->pass, .color_count = pass.color_count, .samples = d->samples ? d->samples : 1,
 		.depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
 		.layout = r->scene_layout.layout, .frag_specialization = &spec,

@@ -68,8 +68,15 @@ struct aa_scene_target_desc {
 	unsigned outputs;           /* AA_OUT_* bits: a G-buffer pass; only single-sample targets */
 	bool depth_readable;        /* depth is stored and left sampleable (depth edge detection) */
 	bool edge_distances;        /* GBAA: a geometry shader writes distances to triangle edges (RG16F) */
-	bool shade_at_pixel_centre; /* virtual MSAA samples: jittered geometry, shading at the pixel centre;
-				     * the target must be frame-sized */
+	uint32_t virtual_samples;   /* one rasterisation of an N-sample virtual MSAA pattern (2, 4 or 8; the
+				     * standard positions): geometry is drawn jittered so that one position lands
+				     * on the pixel centre, and colour and the alpha test are evaluated once per
+				     * pixel and triangle at its shading point (shaders/shading_point.glsl), as
+				     * hardware MSAA does; the target must be frame-sized */
+	bool geometry_at_sample;    /* virtual G-buffer samples: position, normal and velocity stay at the
+				     * sample (RSAA's subsamples); only colour and alpha use the shading point */
+	bool alpha_to_coverage;     /* MSAA targets (samples > 1 or virtual): cut-out alpha sets how many samples
+				     * a fragment covers (the first round(alpha N)) instead of the cutoff test */
 	float texture_lod_bias;     /* added to every texture fetch's mip level (the reference: finer) */
 };
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Generates the small assets the shipped scenes use, into scenes/assets/ (standard library only):
 tiles.png (brick tiles, RGB), chainlink.png (diamond wire mesh with alpha, for cut-out materials),
-torus.obj (a low-poly torus) and gem.gltf (a faceted gem, glTF 2.0 with an embedded base64 buffer).
+torus.obj (a low-poly torus), gem.gltf (a faceted gem) and box.gltf (a unit cube), glTF 2.0 with an
+embedded base64 buffer.
 The outputs are committed; rerun after changing this script:  python3 scripts/make_scene_assets.py"""
 import base64
 import json
@@ -124,6 +125,28 @@ def gem_gltf(path, sides=8, radius=0.5, crown=0.25, pavilion=0.55, table=0.6):
             pos.append(p)
             nrm.append(tuple(v / ln for v in n))
             uv.append((0.5 + p[0], 0.5 - p[2]))
+    write_gltf(path, "gem", pos, nrm, uv, idx)
+
+
+def box_gltf(path, size=1.0):
+    """A cube of edge `size` centred on the origin: 6 flat faces, each with its own 4 vertices and uv 0..1."""
+    h = size / 2
+    faces = [((1, 0, 0), (0, 0, -1), (0, 1, 0)), ((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+             ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1)),
+             ((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((0, 0, -1), (-1, 0, 0), (0, 1, 0))]
+    pos, nrm, uv, idx = [], [], [], []
+    for n, u, v in faces:  # u x v = n, so (0,1,2), (0,2,3) wind counter-clockwise seen from outside
+        base = len(pos)
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            pos.append(tuple(h * (n[k] + su * u[k] + sv * v[k]) for k in range(3)))
+            nrm.append(n)
+            uv.append(((su + 1) / 2, (1 - sv) / 2))
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    write_gltf(path, "box", pos, nrm, uv, idx)
+
+
+def write_gltf(path, name, pos, nrm, uv, idx):
+    """One mesh of triangles (positions, normals, uvs, 16-bit indices) with its buffer embedded as base64."""
     blob = b"".join(struct.pack("<3f", *p) for p in pos)
     blob += b"".join(struct.pack("<3f", *n) for n in nrm)
     blob += b"".join(struct.pack("<2f", *t) for t in uv)
@@ -136,8 +159,8 @@ def gem_gltf(path, sides=8, radius=0.5, crown=0.25, pavilion=0.55, table=0.6):
         "asset": {"version": "2.0", "generator": "aalab scripts/make_scene_assets.py"},
         "scene": 0,
         "scenes": [{"nodes": [0]}],
-        "nodes": [{"mesh": 0, "name": "gem"}],
-        "meshes": [{"name": "gem", "primitives": [{
+        "nodes": [{"mesh": 0, "name": name}],
+        "meshes": [{"name": name, "primitives": [{
             "attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "mode": 4}]}],
         "buffers": [{"byteLength": len(blob),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
@@ -166,7 +189,8 @@ def main():
     write_png(os.path.join(OUT, "chainlink.png"), 128, 128, 4, chainlink)
     torus_obj(os.path.join(OUT, "torus.obj"))
     gem_gltf(os.path.join(OUT, "gem.gltf"))
-    print("wrote tiles.png chainlink.png torus.obj gem.gltf to", os.path.normpath(OUT))
+    box_gltf(os.path.join(OUT, "box.gltf"))
+    print("wrote tiles.png chainlink.png torus.obj gem.gltf box.gltf to", os.path.normpath(OUT))
 
 
 if __name__ == "__main__":

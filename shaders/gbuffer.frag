@@ -5,15 +5,19 @@
 // attachment in the render pass (VK_ATTACHMENT_UNUSED) are discarded, so one shader serves every mix.
 #include "common.glsl"
 #include "shading.glsl"
+#include "shading_point.glsl"
 
 layout(constant_id = 0) const bool ALPHA_TEST = false;
-layout(constant_id = 1) const bool SHADE_AT_PIXEL_CENTRE = false;
+// RSAA's subsample passes: position, normal and velocity stay at the virtual sample (what its similarity
+// test compares); only colour and the alpha test move to the pixel's shading point.
+layout(constant_id = 1) const bool GEOMETRY_AT_SAMPLE = false;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_clip;
 layout(location = 4) in vec4 in_prev_clip;
+layout(location = 5) in vec3 in_barycentric; // virtual samples only
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_velocity;
@@ -25,20 +29,28 @@ layout(location = 5) out vec2 out_surface;
 void main()
 {
 	vec3 world = in_world, normal = in_normal;
-	vec2 uv = in_uv;
+	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
 	vec4 clip = in_clip, prev_clip = in_prev_clip;
-	if (SHADE_AT_PIXEL_CENTRE) {
-		vec2 offset = draw.jitter_ndc * frame.frame_size.xy * 0.5;
-		world = at_offset(in_world, offset);
-		normal = at_offset(in_normal, offset);
-		uv = at_offset(in_uv, offset);
-		clip = at_offset(in_clip, offset);
-		prev_clip = at_offset(in_prev_clip, offset);
+	ShadingPoint sp = shading_point(in_barycentric);
+	if (SHADING_POINT_MODE != SHADING_POINT_FRAGMENT) {
+		uv = at_shading_point(in_uv, sp.offset);
+		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
+		if (!GEOMETRY_AT_SAMPLE) {
+			world = at_shading_point(in_world, sp.offset);
+			normal = at_shading_point(in_normal, sp.offset);
+			clip = at_shading_point(in_clip, sp.offset);
+			prev_clip = at_shading_point(in_prev_clip, sp.offset);
+		}
 	}
 	Material m = materials[draw.material];
-	vec4 base = surface_color(m, uv);
-	if (ALPHA_TEST && base.a < m.shading.z)
-		discard;
+	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
+	if (ALPHA_TEST) {
+		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
+			discard;
+		// G-buffer targets are single-sample: a virtual sample keeps or drops itself
+		if (ALPHA_TO_COVERAGE && (alpha_coverage(base.a) & (1u << max(sp.own_sample, 0))) == 0u)
+			discard;
+	}
 	out_color = vec4(shade(m, base, world, normal, gl_FrontFacing), 1.0);
 	// pixels moved since the previous frame; w floors keep points at the eye finite
 	vec2 ndc = clip.xy / max(abs(clip.w), 1e-6);

@@ -13,6 +13,7 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 3) out vec4 out_clip;
 layout(location = 4) out vec4 out_prev_clip;
+layout(location = 5) out vec3 out_barycentric; // virtual_sample_gbuffer.geom writes the real ones
 
 void main()
 {
@@ -21,6 +22,7 @@ void main()
 	out_world = world.xyz;
 	out_normal = nm * in_normal;
 	out_uv = in_uv;
+	out_barycentric = vec3(1.0);
 	vec4 clip = frame.view_proj * world;
 	out_clip = clip;
 	out_prev_clip = frame.prev_view_proj * (prev_models[draw.object_id - 1u] * vec4(in_position, 1.0));

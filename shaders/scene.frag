@@ -4,31 +4,42 @@
 // directional and point lights, one shadow-mapped directional light. Output is linear colour.
 #include "common.glsl"
 #include "shading.glsl"
+#include "shading_point.glsl"
 
 layout(constant_id = 0) const bool ALPHA_TEST = false;
-// Virtual MSAA samples: the geometry is jittered to a sample position, but shading is evaluated at the
-// pixel centre (attributes extrapolated by the jitter), once per pixel and triangle as MSAA does.
-layout(constant_id = 1) const bool SHADE_AT_PIXEL_CENTRE = false;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec3 in_barycentric; // virtual samples only (virtual_sample.geom)
 
 layout(location = 0) out vec4 out_color;
 
 void main()
 {
+	// MSAA targets (hardware or virtual samples) shade and alpha-test once per pixel and triangle, at the
+	// shading point; texture gradients stay those of the pixel (a moved uv has none that mean anything).
 	vec3 world = in_world, normal = in_normal;
-	vec2 uv = in_uv;
-	if (SHADE_AT_PIXEL_CENTRE) {
-		vec2 offset = draw.jitter_ndc * frame.frame_size.xy * 0.5;
-		world = at_offset(in_world, offset);
-		normal = at_offset(in_normal, offset);
-		uv = at_offset(in_uv, offset);
+	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+	ShadingPoint sp = shading_point(in_barycentric);
+	if (SHADING_POINT_MODE != SHADING_POINT_FRAGMENT) {
+		world = at_shading_point(in_world, sp.offset);
+		normal = at_shading_point(in_normal, sp.offset);
+		uv = at_shading_point(in_uv, sp.offset);
+		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
 	}
 	Material m = materials[draw.material];
-	vec4 base = surface_color(m, uv);
-	if (ALPHA_TEST && base.a < m.shading.z)
-		discard;
+	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
+	gl_SampleMask[0] = -1; // always written: an output left unwritten would be undefined
+	if (ALPHA_TEST) {
+		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
+			discard;
+		if (ALPHA_TO_COVERAGE) {
+			uint kept = alpha_coverage(base.a);
+			if (SHADING_POINT_MODE == SHADING_POINT_VIRTUAL && (kept & (1u << sp.own_sample)) == 0u)
+				discard;
+			gl_SampleMask[0] = int(kept);
+		}
+	}
 	out_color = vec4(shade(m, base, world, normal, gl_FrontFacing), 1.0);
 }

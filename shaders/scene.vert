@@ -11,6 +11,7 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
+layout(location = 3) out vec3 out_barycentric; // virtual_sample.geom writes the real ones
 
 void main()
 {
@@ -19,6 +20,7 @@ void main()
 	out_world = world.xyz;
 	out_normal = nm * in_normal;
 	out_uv = in_uv;
+	out_barycentric = vec3(1.0);
 	vec4 clip = frame.view_proj * world;
 	clip.xy += draw.jitter_ndc * clip.w;
 	gl_Position = clip;

@@ -1,14 +1,6 @@
 // Surface colour and lighting shared by the scene passes (scene.frag, gbaa.frag).
 // Needs common.glsl included first.
 
-// An attribute extrapolated from the fragment's position by `offset` pixels, from its screen derivatives
-// (exact for attributes linear on screen, to second order otherwise). Used instead of
-// interpolateAtOffset, which gave shifted results on lavapipe (Mesa 22.3) for non-zero offsets.
-#define AT_OFFSET(T) T at_offset(T v, vec2 offset) { return v + dFdxFine(v) * offset.x + dFdyFine(v) * offset.y; }
-AT_OFFSET(vec2)
-AT_OFFSET(vec3)
-AT_OFFSET(vec4)
-
 // Texture LOD bias of the target: the reference's N samples per pixel each stand for 1/N of the pixel,
 // so they read a mip level finer by log2(sqrt(N)); otherwise it would converge to trilinear blur.
 layout(constant_id = 2) const float TEXTURE_LOD_BIAS = 0.0;

@@ -1,7 +1,9 @@
-/* `msaa`: multisampling. Visibility is sampled at N standard positions per pixel, shading once per pixel
- * and triangle, resolved with a box filter. Hardware MSAA where the device renders N samples (lavapipe:
- * 4 only); otherwise "virtual samples": the scene is rasterised once per standard position (geometry
- * jittered to it) with shading evaluated at the pixel centre, and the N images are averaged (seed 000). */
+/* `msaa`: multisampling. Visibility is sampled at N standard positions per pixel, shading and the alpha
+ * test once per pixel and triangle at its shading point (the centre, or the first covered sample when the
+ * triangle covers only part of the pixel: shaders/shading_point.glsl), resolved with a box filter.
+ * Hardware MSAA where the device renders N samples (lavapipe: 4 only); otherwise "virtual samples": the
+ * scene is rasterised once per standard position (geometry jittered to it) with the same shading point,
+ * and the N images are averaged (seed 000). Both paths give the same image up to rounding. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +21,9 @@ static const struct aa_param_def msaa_params[] = {
 	 .help = "samples per pixel, at the Vulkan standard sample locations"},
 	{.name = "path", .type = AA_PARAM_ENUM, .def = PATH_AUTO, .min = 0, .max = 2, .choices = msaa_paths,
 	 .help = "auto: hardware when the device supports the count, else virtual samples"},
+	{.name = "alpha_to_coverage", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "cut-out materials: alpha sets how many of the N samples a fragment covers, instead of one "
+		 "alpha test per pixel"},
 };
 
 struct aa_method_state {
@@ -47,6 +52,7 @@ static int msaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	s->r = r;
 	s->samples = (int)p->v[0];
 	int path = (int)p->v[1];
+	bool alpha_to_coverage = p->v[2] != 0;
 	bool supported = (r->gpu->color_sample_counts & (VkSampleCountFlags)s->samples) != 0;
 	if (path == PATH_HARDWARE && !supported) {
 		free(s);
@@ -58,12 +64,14 @@ static int msaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	int rc;
 	if (s->hardware) {
 		snprintf(info->path_taken, sizeof info->path_taken, "hardware %dx, box resolve", s->samples);
-		struct aa_scene_target_desc d = {.samples = (uint32_t)s->samples};
+		struct aa_scene_target_desc d = {.samples = (uint32_t)s->samples,
+						 .alpha_to_coverage = alpha_to_coverage};
 		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "msaa", info, err);
 	} else {
 		snprintf(info->path_taken, sizeof info->path_taken,
-			 "virtual samples: %d rasterisations, shading at the pixel centre", s->samples);
-		struct aa_scene_target_desc d = {.samples = 1, .shade_at_pixel_centre = true};
+			 "virtual samples: %d rasterisations, shading once per pixel", s->samples);
+		struct aa_scene_target_desc d = {.samples = 1, .virtual_samples = (uint32_t)s->samples,
+						 .alpha_to_coverage = alpha_to_coverage};
 		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "sample", info, err) ||
 		     aa_renderer_image_create(r, &s->accum, r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
 					      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -114,7 +122,7 @@ const struct aa_method aa_method_msaa = {
 	.summary = "multisampling: N visibility samples per pixel, one shade per pixel and triangle",
 	.seed = "seed 000 (2x/4x/8x MSAA)",
 	.params = msaa_params,
-	.param_count = 2,
+	.param_count = 3,
 	.main_param = "samples",
 	.needs = AA_NEED_MSAA,
 	.create = msaa_create,

@@ -32,6 +32,9 @@ static const struct aa_param_def rsaa_params[] = {
 	 .help = "sadp: sum of absolute dot products of normals and the joining direction; depth: view depth"},
 	{.name = "auth", .type = AA_PARAM_INT, .def = 1, .min = 0, .max = 2,
 	 .help = "authentication of offsets: 0 off, 1 post-process (halve), 2 pre-pass (reclassify)"},
+	{.name = "alpha_to_coverage", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "cut-out materials: alpha sets how many geometric subsamples a fragment covers, instead of one "
+		 "alpha test per pixel"},
 };
 
 /* push constants of rsaa_prepass.comp / rsaa_resolve.comp */
@@ -130,10 +133,15 @@ static int rsaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 		 s->samples, t->class_count[RSAA_CLASS_ONE_LINE], t->class_count[RSAA_CLASS_TWO_LINE],
 		 t->class_count[RSAA_CLASS_FALLBACK]);
 	struct aa_scene_target_desc d = {.samples = 1, .outputs = AA_OUT_POSITION | AA_OUT_NORMAL};
+	/* an MSAA G-buffer's subsamples: geometry at each subsample, the alpha test once per pixel and
+	 * triangle at its shading point (as the centre pass tests it), or alpha to coverage */
+	struct aa_scene_target_desc sub = {.samples = 1, .outputs = AA_OUT_POSITION | AA_OUT_NORMAL,
+					   .virtual_samples = (uint32_t)s->samples, .geometry_at_sample = true,
+					   .alpha_to_coverage = p->v[3] != 0};
 	VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
 				    VK_IMAGE_USAGE_SAMPLED_BIT;
 	if (aa_scene_target_create_desc(r, &s->centre, r->width, r->height, &d, "centre", info, err) ||
-	    aa_scene_target_create_desc(r, &s->subsample, r->width, r->height, &d, "subsample", info, err) ||
+	    aa_scene_target_create_desc(r, &s->subsample, r->width, r->height, &sub, "subsample", info, err) ||
 	    aa_renderer_image_create(r, &s->differences, r->width, r->height, VK_FORMAT_R32G32B32A32_UINT,
 				     storage, "subsample differences (RGBA32UI)", info,
 				     err) ||
@@ -210,7 +218,7 @@ const struct aa_method aa_method_rsaa = {
 	.summary = "resampling AA: geometric subsamples -> similarity mask -> one bilinear fetch at a trained offset",
 	.seed = "seed 002 (Reshetov, HPG 2012)",
 	.params = rsaa_params,
-	.param_count = 3,
+	.param_count = 4,
 	.main_param = "samples",
 	.needs = AA_NEED_GBUFFER | AA_NEED_SUBSAMPLES,
 	.create = rsaa_create,

@@ -70,9 +70,10 @@ static int t2msaa_create(struct aa_renderer *r, const struct aa_method_params *p
 	s->max_samples = (float)p->v[1];
 	snprintf(info->path_taken, sizeof info->path_taken,
 		 "2 virtual samples + 1 previous frame, jitter +-%g px", (double)s->offset);
+	/* 2 virtual samples: shading and the alpha test once per pixel, as 2x MSAA does (shading_point.glsl) */
 	struct aa_scene_target_desc d0 = {.samples = 1, .outputs = AA_OUT_VELOCITY | AA_OUT_SURFACE,
-					  .shade_at_pixel_centre = true};
-	struct aa_scene_target_desc d1 = {.samples = 1, .shade_at_pixel_centre = true};
+					  .virtual_samples = 2};
+	struct aa_scene_target_desc d1 = {.samples = 1, .virtual_samples = 2};
 	VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 	int rc = aa_scene_target_create_desc(r, &s->sample0, r->width, r->height, &d0, "sample 0", info, err) ||
 		 aa_scene_target_create_desc(r, &s->sample1, r->width, r->height, &d1, "sample 1", info, err);

@@ -1,0 +1,32 @@
+#version 450
+// Virtual MSAA samples of the G-buffer pass: as virtual_sample.geom, for gbuffer.vert's attributes.
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+
+layout(location = 0) in vec3 in_world[];
+layout(location = 1) in vec3 in_normal[];
+layout(location = 2) in vec2 in_uv[];
+layout(location = 3) in vec4 in_clip[];
+layout(location = 4) in vec4 in_prev_clip[];
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+layout(location = 3) out vec4 out_clip;
+layout(location = 4) out vec4 out_prev_clip;
+layout(location = 5) out vec3 out_barycentric;
+
+void main()
+{
+	for (int v = 0; v < 3; v++) {
+		gl_Position = gl_in[v].gl_Position;
+		out_world = in_world[v];
+		out_normal = in_normal[v];
+		out_uv = in_uv[v];
+		out_clip = in_clip[v];
+		out_prev_clip = in_prev_clip[v];
+		out_barycentric = vec3(v == 0, v == 1, v == 2);
+		EmitVertex();
+	}
+	EndPrimitive();
+}
