@@ -7,7 +7,7 @@
 static const struct aa_cmd_entry commands[] = {
 	/* name, usage, summary, exec[, full help] */
 	{"run", "run [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
-		"[--reference-samples N] [--out DIR] [--device SEL] [--no-images] [--json] [--quiet]",
+		"[--reference-samples N] [--repeat N] [--out DIR] [--device SEL] [--no-images] [--json] [--quiet]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
 	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
 	{"methods", "methods [--json]", "list the AA methods with their parameters, defaults and valid values",

@@ -43,7 +43,7 @@ extern const char aa_diff_help[];
 	{"scene", required_argument, 0, AA_OPT_JOB}, {"path", required_argument, 0, AA_OPT_JOB}, \
 	{"methods", required_argument, 0, AA_OPT_JOB}, {"frames", required_argument, 0, AA_OPT_JOB}, \
 	{"first-frame", required_argument, 0, AA_OPT_JOB}, {"size", required_argument, 0, AA_OPT_JOB}, \
-	{"reference-samples", required_argument, 0, AA_OPT_JOB}
+	{"reference-samples", required_argument, 0, AA_OPT_JOB}, {"repeat", required_argument, 0, AA_OPT_JOB}
 int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *job);
 json_t *aa_job_load_file(const char *cmd, const char *path);
 /* The job: argv[first] (a job file) if given, with the flags' fields over it; NULL after printing why. */

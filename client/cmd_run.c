@@ -27,6 +27,8 @@ const char aa_run_help[] =
 	"  --first-frame N         frame index on the path to start at (default 0)\n"
 	"  --size WxH              image size (default 640x360)\n"
 	"  --reference-samples N   samples of the accumulated reference, even (default 64)\n"
+	"  --repeat N              render and time each method's frame N times, the first scored, for\n"
+	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
 	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS)\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"

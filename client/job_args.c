@@ -43,6 +43,12 @@ int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *jo
 		json_object_set_new(job, "reference", json_pack("{sI}", "samples", n));
 		return 0;
 	}
+	if (!strcmp(flag, "repeat")) {
+		if (parse_int(cmd, "timing.repeat", value, &n))
+			return -1;
+		json_object_set_new(job, "timing", json_pack("{sI}", "repeat", n));
+		return 0;
+	}
 	if (!strcmp(flag, "methods")) {
 		char **list;
 		int count;

@@ -29,7 +29,9 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
 		r->reference.samples, conv, r->device_name);
 	bool sequence = r->spec.frames > 1;
-	fprintf(out, "%-24s %12s %10s %9s %10s %8s", "method", "GPU ms/frame", "p90 ms", "MB", "PSNR dB", "SSIM");
+	/* GPU time over every timed render (frames x --repeat): median, the 10th-90th percentile range, count */
+	fprintf(out, "%-24s %12s %15s %4s %9s %10s %8s", "method", "GPU ms/frame", "p10-p90 ms", "n", "MB", "PSNR dB",
+		"SSIM");
 	if (sequence) /* per-sequence figures: worst and best frame (index), and the temporal stability figure */
 		fprintf(out, " %16s %16s %8s", "worst dB (frame)", "best dB (frame)", "flicker");
 	fputc('\n', out);
@@ -39,7 +41,9 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		aa_method_summarize(m, &s);
 		char psnr[32];
 		format_psnr(s.psnr_mean, s.psnr_identical, psnr, sizeof psnr);
-		fprintf(out, "%-24s %12.2f %10.2f %9.1f %10s %8.4f", m->label, s.gpu_ms_median, s.gpu_ms_p90,
+		char spread[48];
+		snprintf(spread, sizeof spread, "%.2f-%.2f", s.gpu_ms.p10, s.gpu_ms.p90);
+		fprintf(out, "%-24s %12.2f %15s %4d %9.1f %10s %8.4f", m->label, s.gpu_ms.median, spread, s.gpu_ms.n,
 			m->memory_bytes / (1024.0 * 1024.0), psnr, s.ssim_mean);
 		if (sequence) {
 			char worst[32], best[32], text[48];
@@ -51,6 +55,17 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 			fprintf(out, " %16s %8.3f", text, s.flicker_mean);
 		}
 		fputc('\n', out);
+	}
+	/* cut-out materials: say how each method tested alpha, so that a ranking can be read fairly */
+	bool cutouts = false;
+	for (int i = 0; i < r->plan_count && i < AA_MAX_PASSES; i++)
+		cutouts = cutouts || (strcmp(r->plan[i].pass, "alpha-test") == 0 && r->plan[i].ran);
+	if (cutouts) {
+		fputs("\nalpha test of cut-out materials:", out);
+		for (int i = 0; i < r->method_count; i++)
+			fprintf(out, "%s %s %s", i ? "," : "", r->methods[i].label,
+				aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
+		fputs("; reference per-sample (docs/methods.md)\n", out);
 	}
 }
 

@@ -305,7 +305,7 @@ struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const 
 	job->spec_json = aa_job_spec_to_json(spec);
 	snprintf(job->client, sizeof job->client, "%s", client);
 	job->submitted_at = now_s();
-	job->total = spec->frames * (1 + spec->method_count);
+	job->total = spec->frames * (1 + spec->method_count * spec->timing_repeat);
 	job->events_loaded = true;
 	pthread_mutex_lock(&s->lock);
 	snprintf(job->id, sizeof job->id, "%06lu", s->next_id++);

@@ -209,11 +209,12 @@ static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payl
 	}
 	double samples = spec.reference_samples;
 	for (int i = 0; i < spec.method_count; i++)
-		samples += method_samples(&spec.methods[i]);
+		samples += (double)spec.timing_repeat * method_samples(&spec.methods[i]); /* repeats render again */
 	double budget = (double)spec.width * spec.height * spec.frames * samples;
 	if (budget > d->cfg.max_job_budget) {
 		protocol_error(c, tag, "limit", "job", "job budget %.3g (width x height x frames x (reference samples "
-			       "+ method samples)) is over max-job-budget %.3g", budget, d->cfg.max_job_budget);
+			       "+ timing.repeat x method samples)) is over max-job-budget %.3g", budget,
+			       d->cfg.max_job_budget);
 		return;
 	}
 	if (d->draining) {

@@ -63,11 +63,15 @@ static json_t *started_event(const struct aa_job_result *r)
 	for (int i = 0; i < r->plan_count; i++)
 		json_array_append_new(plan, json_pack("{ss ss sb}", "pass", r->plan[i].pass, "reason",
 						      r->plan[i].reason, "ran", r->plan[i].ran));
-	for (int i = 0; i < r->method_count; i++)
+	json_t *alpha_rules = json_array();
+	for (int i = 0; i < r->method_count; i++) {
 		json_array_append_new(methods, json_string(r->methods[i].label));
-	return json_pack("{ss ss ss so so si si si}", "event", "job_started", "scene", r->scene_name, "device",
-			 r->device_name, "plan", plan, "methods", methods, "frames", r->spec.frames, "width",
-			 r->spec.width, "height", r->spec.height);
+		json_array_append_new(alpha_rules, json_string(aa_alpha_rule_name(
+			aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params))));
+	}
+	return json_pack("{ss ss ss so so so si si si si}", "event", "job_started", "scene", r->scene_name, "device",
+			 r->device_name, "plan", plan, "methods", methods, "alpha_rules", alpha_rules, "frames",
+			 r->spec.frames, "width", r->spec.width, "height", r->spec.height, "repeat", r->spec.timing_repeat);
 }
 
 static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
@@ -88,11 +92,14 @@ static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
 		for (int i = 0; i < fr->pass_count; i++)
 			json_array_append_new(passes, json_pack("{ss so}", "name", fr->passes[i].name, "gpu_ms",
 								num(fr->passes[i].gpu_ms)));
-		o = json_pack("{ss ss si si so so so s{so sb so so}}", "event", "method_frame", "method", m->label,
-			      "frame", ev->frame, "ordinal", ev->frame_ordinal, "gpu_ms", num(fr->gpu_ms), "cpu_ms",
-			      num(fr->cpu_ms), "passes", passes, "metrics", "psnr", num(fr->metrics.psnr),
-			      "identical", fr->metrics.identical, "ssim", num(fr->metrics.ssim), "mse",
-			      num(fr->metrics.mse));
+		/* the scored render; its place in the frame's rotating method order (re-timings follow it and
+		 * reach the client in results.json) */
+		int position = m->timed ? m->timed[ev->frame_ordinal * ev->result->spec.timing_repeat].position : 0;
+		o = json_pack("{ss ss si si si so so so s{so sb so so}}", "event", "method_frame", "method", m->label,
+			      "frame", ev->frame, "ordinal", ev->frame_ordinal, "position", position, "gpu_ms",
+			      num(fr->gpu_ms), "cpu_ms", num(fr->cpu_ms), "passes", passes, "metrics", "psnr",
+			      num(fr->metrics.psnr), "identical", fr->metrics.identical, "ssim", num(fr->metrics.ssim),
+			      "mse", num(fr->metrics.mse));
 		aa_results_frame_relpath("frames", m->label, ev->frame_ordinal, rel, sizeof rel);
 		if (images) {
 			char diff[256];
@@ -150,12 +157,14 @@ static json_t *summarize(const json_t *results)
 	json_t *out = json_array(), *m;
 	size_t i;
 	json_array_foreach(json_object_get(results, "methods"), i, m) {
-		json_t *metrics = json_object_get(m, "metrics");
-		json_array_append_new(out, json_pack("{sO sO sO sO sO}", "label", json_object_get(m, "label"),
-			"gpu_ms", json_object_get(json_object_get(m, "gpu_ms"), "median"),
+		json_t *metrics = json_object_get(m, "metrics"), *gpu = json_object_get(m, "gpu_ms");
+		json_array_append_new(out, json_pack("{sO sO sO sO sO sO sO sO sO}", "label", json_object_get(m, "label"),
+			"gpu_ms", json_object_get(gpu, "median"), "gpu_ms_p10", json_object_get(gpu, "p10"),
+			"gpu_ms_p90", json_object_get(gpu, "p90"), "gpu_ms_n", json_object_get(gpu, "n"),
 			"memory_bytes", json_object_get(m, "memory_bytes"),
 			"psnr", json_object_get(json_object_get(metrics, "psnr"), "mean"),
-			"ssim", json_object_get(json_object_get(metrics, "ssim"), "mean")));
+			"ssim", json_object_get(json_object_get(metrics, "ssim"), "mean"),
+			"alpha_rule", json_object_get(m, "alpha_rule")));
 	}
 	return out;
 }

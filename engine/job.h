@@ -31,6 +31,8 @@ struct aa_job_spec {
 	int frames;
 	int first_frame;           /* frame index of the first rendered frame on the path (time = index/fps) */
 	int reference_samples;     /* N of the accumulated reference; N/2 is the convergence check */
+	int timing_repeat;         /* timing.repeat: each method's frame is rendered and timed this many times
+				    * (the first is scored); the reference is rendered once */
 	int method_count;
 	struct aa_method_spec methods[AA_MAX_METHODS];
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
@@ -51,6 +53,7 @@ int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err);
 #define AA_MAX_SIZE 8192
 #define AA_MAX_FRAMES 100000
 #define AA_MAX_REFERENCE_SAMPLES 4096
+#define AA_MAX_REPEAT 100
 
 /* ---- results ---- */
 
@@ -76,6 +79,16 @@ struct aa_frame_result {
 				    * units: change between frames the reference does not have; NAN at frame 0 */
 };
 
+/* One timed render of a method's frame: the scored one (repeat 0) or a re-timing (timing.repeat). */
+struct aa_timed_render {
+	int ordinal;               /* frame ordinal: frames[ordinal].passes name pass_ms */
+	int repeat;                /* 0 = the scored render */
+	int position;              /* place in its round's method order, 0 = first after the reference */
+	double gpu_ms, cpu_ms;
+	int pass_count;            /* 0 when this render's passes were not the scored render's */
+	double pass_ms[AA_MAX_PASSES];
+};
+
 struct aa_method_result {
 	char label[AA_LABEL_MAX];
 	const struct aa_method *method;
@@ -86,6 +99,8 @@ struct aa_method_result {
 	uint64_t memory_bytes;     /* sum of memory[] */
 	int frame_count;
 	struct aa_frame_result *frames;
+	int timed_count;           /* frames x timing.repeat when complete */
+	struct aa_timed_render *timed; /* [ordinal * repeat + r] */
 };
 
 struct aa_reference_frame {
@@ -132,9 +147,21 @@ struct aa_job_result {
 
 void aa_job_result_free(struct aa_job_result *r);
 
-/* Per-method summary over frames (computed, never stored separately). */
+/* A distribution of times: median, 10th and 90th percentile, minimum, mean and the count of values. */
+struct aa_timing_stats {
+	double median, p10, p90, min, mean;
+	int n;
+};
+/* Over n values (non-finite ones skipped); every field NAN and n 0 when there are none. */
+void aa_timing_stats_of(const double *values, int n, struct aa_timing_stats *out);
+/* The GPU time of the pass named `name` over every timed render of m that ran it. */
+void aa_pass_timing_stats(const struct aa_method_result *m, const char *name, struct aa_timing_stats *out);
+
+/* Per-method summary over frames (computed, never stored separately). Times are over every timed
+ * render (frames x timing.repeat); quality over the scored frames. */
 struct aa_method_summary {
 	double gpu_ms_median, gpu_ms_p90, gpu_ms_mean;
+	struct aa_timing_stats gpu_ms, cpu_ms; /* the full distributions (gpu_ms_median = gpu_ms.median) */
 	double cpu_ms_median;
 	double mse_mean;
 	double psnr_mean;          /* from mse_mean; NAN if every frame identical */

@@ -67,6 +67,9 @@ struct job_state {
 	struct aa_renderer *renderer;
 	struct aa_reference reference;
 	struct aa_method_state *states[AA_MAX_METHODS];
+	/* timing.repeat > 1: a second instance of each method with history, never scored, that re-times its
+	 * frames so that the scored instance's history advances exactly once per frame */
+	struct aa_method_state *twins[AA_MAX_METHODS];
 	struct aa_gpu_timer timer;
 	struct aa_gpu_buffer readback;
 	struct aa_image_rgbaf full, half, output;
@@ -77,9 +80,12 @@ struct job_state {
 
 static void job_state_free(struct job_state *js)
 {
-	for (int i = 0; i < js->spec->method_count; i++)
+	for (int i = 0; i < js->spec->method_count; i++) {
 		if (js->states[i])
 			js->spec->methods[i].method->destroy(js->states[i]);
+		if (js->twins[i])
+			js->spec->methods[i].method->destroy(js->twins[i]);
+	}
 	aa_reference_destroy(&js->reference);
 	if (js->renderer) {
 		aa_gpu_buffer_destroy(&js->engine->gpu, &js->readback);
@@ -106,6 +112,12 @@ static int emit(aa_event_fn fn, void *user, struct aa_event *ev, struct aa_error
 	if (fn && fn(ev, user))
 		return aa_error_set(err, AA_ERR_CANCELLED, "", "the job was cancelled");
 	return 0;
+}
+
+static bool has_history(const struct aa_method_spec *ms)
+{
+	unsigned needs = ms->method->needs_fn ? ms->method->needs_fn(&ms->params) : ms->method->needs;
+	return (needs & AA_NEED_HISTORY) != 0;
 }
 
 static int setup(struct job_state *js, struct aa_error *err)
@@ -161,11 +173,23 @@ static int setup(struct job_state *js, struct aa_error *err)
 		m->method = ms->method;
 		m->params = ms->params;
 		m->frames = calloc((size_t)spec->frames, sizeof *m->frames);
-		if (!m->frames)
+		m->timed = calloc((size_t)spec->frames * (size_t)spec->timing_repeat, sizeof *m->timed);
+		if (!m->frames || !m->timed)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		if (ms->method->create(js->renderer, &ms->params, m, &js->states[i], err)) {
 			aa_error_prefix(err, "%s", ms->label);
 			return -1;
+		}
+		if (spec->timing_repeat > 1 && has_history(ms)) {
+			struct aa_method_result *scratch = calloc(1, sizeof *scratch); /* its memory is not the method's */
+			int failed = !scratch || ms->method->create(js->renderer, &ms->params, scratch, &js->twins[i], err);
+			free(scratch);
+			if (failed) {
+				if (!scratch)
+					aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+				aa_error_prefix(err, "%s (the instance that re-times frames)", ms->label);
+				return -1;
+			}
 		}
 	}
 	int w = spec->width, h = spec->height;
@@ -231,7 +255,11 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 static int warm_up(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_error *err)
 {
 	struct aa_gpu *gpu = &js->engine->gpu;
-	for (int i = 0; i < js->spec->method_count; i++) {
+	for (int k = 0; k < 2 * js->spec->method_count; k++) {
+		int i = k % js->spec->method_count;
+		struct aa_method_state *state = k < js->spec->method_count ? js->states[i] : js->twins[i];
+		if (!state)
+			continue;
 		const struct aa_method *method = js->spec->methods[i].method;
 		struct aa_frame_ctx warm = *ctx;
 		if (aa_gpu_begin(gpu, &warm.cmd, err))
@@ -239,7 +267,7 @@ static int warm_up(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_err
 		aa_gpu_timer_reset(warm.cmd, &js->timer);
 		aa_renderer_record_shadow(js->renderer, warm.cmd);
 		warm.timer = &js->timer;
-		if (method->render(js->states[i], &warm, err)) {
+		if (method->render(state, &warm, err)) {
 			aa_gpu_submit_wait(gpu, warm.cmd, NULL);
 			aa_error_prefix(err, "%s", js->spec->methods[i].label);
 			return -1;
@@ -247,19 +275,22 @@ static int warm_up(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_err
 		if (aa_gpu_submit_wait(gpu, warm.cmd, err))
 			return -1;
 		if (method->reset)
-			method->reset(js->states[i]);
+			method->reset(state);
 	}
 	return 0;
 }
 
-static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, struct aa_error *err)
+/* Records one frame of a method into a command buffer (shadow map, its passes, the readback of its
+ * output), submits it and waits; fills t with the wall time and each pass's GPU time. The same for a
+ * scored render and a repeat, so that both are timed alike. */
+static int timed_render(struct job_state *js, int i, struct aa_method_state *state, struct aa_frame_ctx *ctx,
+			struct aa_timed_render *t, struct aa_error *err)
 {
 	struct aa_gpu *gpu = &js->engine->gpu;
 	const struct aa_method *method = js->spec->methods[i].method;
-	struct aa_frame_result *fr = &js->result->methods[i].frames[ctx->ordinal];
 	double t0 = aa_now_ms();
 	if (ctx->cut && method->reset)
-		method->reset(js->states[i]);
+		method->reset(state);
 	if (aa_gpu_begin(gpu, &ctx->cmd, err))
 		return -1;
 	aa_gpu_timer_reset(ctx->cmd, &js->timer);
@@ -271,7 +302,7 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	}
 	ctx->timer = &js->timer;
 	ctx->output = NULL;
-	if (method->render(js->states[i], ctx, err) || !ctx->output || ctx->output->width != ctx->width ||
+	if (method->render(state, ctx, err) || !ctx->output || ctx->output->width != ctx->width ||
 	    ctx->output->height != ctx->height ||
 	    (ctx->output->format != VK_FORMAT_R16G16B16A16_SFLOAT &&
 	     ctx->output->format != VK_FORMAT_R32G32B32A32_SFLOAT) ||
@@ -285,17 +316,59 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	}
 	if (aa_gpu_submit_wait(gpu, ctx->cmd, err))
 		return -1;
-	fr->cpu_ms = aa_now_ms() - t0;
-	fr->frame = ctx->frame;
+	t->cpu_ms = aa_now_ms() - t0;
 	double ms[AA_GPU_TIMER_MAX / 2];
 	if (aa_gpu_timer_read(gpu, &js->timer, ms, err))
 		return -1;
-	fr->pass_count = js->timer.span_count < AA_MAX_PASSES ? js->timer.span_count : AA_MAX_PASSES;
-	fr->gpu_ms = 0;
+	t->pass_count = js->timer.span_count < AA_MAX_PASSES ? js->timer.span_count : AA_MAX_PASSES;
+	t->gpu_ms = 0;
+	for (int s = 0; s < t->pass_count; s++) {
+		t->pass_ms[s] = ms[s];
+		t->gpu_ms += ms[s];
+	}
+	return 0;
+}
+
+/* Repeat r (1..) of method i's frame: timed like the scored render, never scored. A method with
+ * history re-times on its twin, reset whenever the scored instance is, so the scored history never
+ * sees a frame twice (docs/methods.md, "Timing"). */
+static int retime_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, int r, int position,
+			 struct aa_error *err)
+{
+	struct aa_method_result *m = &js->result->methods[i];
+	struct aa_timed_render *t = &m->timed[ctx->ordinal * js->spec->timing_repeat + r];
+	*t = (struct aa_timed_render){.ordinal = ctx->ordinal, .repeat = r, .position = position};
+	struct aa_method_state *state = js->twins[i] ? js->twins[i] : js->states[i];
+	if (timed_render(js, i, state, ctx, t, err))
+		return -1;
+	/* pass times are kept by the scored render's pass names; a different list keeps only the total */
+	const struct aa_frame_result *fr = &m->frames[ctx->ordinal];
+	bool same = t->pass_count == fr->pass_count;
+	for (int k = 0; same && k < t->pass_count; k++)
+		same = strcmp(js->timer.spans[k].name, fr->passes[k].name) == 0;
+	if (!same)
+		t->pass_count = 0;
+	m->timed_count = ctx->ordinal * js->spec->timing_repeat + r + 1;
+	return 0;
+}
+
+/* The scored render of method i's frame (repeat 0): timed, read back and compared with the reference. */
+static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, int position, struct aa_error *err)
+{
+	struct aa_method_result *mr = &js->result->methods[i];
+	struct aa_frame_result *fr = &mr->frames[ctx->ordinal];
+	struct aa_timed_render *t = &mr->timed[ctx->ordinal * js->spec->timing_repeat];
+	*t = (struct aa_timed_render){.ordinal = ctx->ordinal, .repeat = 0, .position = position};
+	if (timed_render(js, i, js->states[i], ctx, t, err))
+		return -1;
+	mr->timed_count = ctx->ordinal * js->spec->timing_repeat + 1;
+	fr->cpu_ms = t->cpu_ms;
+	fr->frame = ctx->frame;
+	fr->pass_count = t->pass_count;
+	fr->gpu_ms = t->gpu_ms;
 	for (int s = 0; s < fr->pass_count; s++) {
 		snprintf(fr->passes[s].name, sizeof fr->passes[s].name, "%s", js->timer.spans[s].name);
-		fr->passes[s].gpu_ms = ms[s];
-		fr->gpu_ms += ms[s];
+		fr->passes[s].gpu_ms = t->pass_ms[s];
 	}
 	size_t n = (size_t)ctx->width * ctx->height * 4;
 	if (ctx->output->format == VK_FORMAT_R32G32B32A32_SFLOAT) {
@@ -344,7 +417,7 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	struct aa_event ev = {.type = AA_EVENT_JOB_STARTED, .result = js.result};
 	if (rc == 0)
 		rc = emit(on_event, user, &ev, err);
-	int total = spec->frames * (1 + spec->method_count), done = 0;
+	int total = spec->frames * (1 + spec->method_count * spec->timing_repeat), done = 0;
 	const struct aa_camera_path *path = rc == 0 ? aa_scene_find_path(js.scene, spec->path) : NULL;
 	bool hold_first = strcmp(spec->path, "static") == 0;
 	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
@@ -374,18 +447,31 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 		ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done, .total = total};
 		if (rc == 0)
 			rc = emit(on_event, user, &ev, err);
-		for (int i = 0; rc == 0 && i < spec->method_count; i++) {
-			rc = render_method(&js, i, &ctx, err);
-			ev = (struct aa_event){.type = AA_EVENT_METHOD_FRAME, .result = js.result, .frame = ctx.frame,
-					       .frame_ordinal = ordinal, .method_index = i, .image = &js.out8,
-					       .linear = &js.output, .diff = &js.diff8,
-					       .flip_map = &js.flip8};
-			if (rc == 0)
-				rc = emit(on_event, user, &ev, err);
-			ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done,
-					       .total = total};
-			if (rc == 0)
-				rc = emit(on_event, user, &ev, err);
+		/* Methods interleave frame by frame, each round in an order rotated by one, so that no method
+		 * always runs first after the reference (or after any other); round 0 is scored, the rest
+		 * re-time (timing.repeat). */
+		const int count = spec->method_count, repeat = spec->timing_repeat;
+		for (int round = 0; rc == 0 && round < repeat; round++) {
+			const int first = (int)(((long)ordinal * repeat + round) % count);
+			for (int position = 0; rc == 0 && position < count; position++) {
+				const int i = (first + position) % count;
+				if (round > 0) {
+					rc = retime_method(&js, i, &ctx, round, position, err);
+				} else {
+					rc = render_method(&js, i, &ctx, position, err);
+					ev = (struct aa_event){.type = AA_EVENT_METHOD_FRAME, .result = js.result,
+							       .frame = ctx.frame, .frame_ordinal = ordinal,
+							       .method_index = i, .image = &js.out8,
+							       .linear = &js.output, .diff = &js.diff8,
+							       .flip_map = &js.flip8};
+					if (rc == 0)
+						rc = emit(on_event, user, &ev, err);
+				}
+				ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done,
+						       .total = total};
+				if (rc == 0)
+					rc = emit(on_event, user, &ev, err);
+			}
 		}
 	}
 	js.result->wall_seconds = (aa_now_ms() - t_start) / 1000.0;

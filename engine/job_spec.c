@@ -12,7 +12,8 @@
 #define AA_MAX_FIRST_FRAME 10000000
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
-					"reference", "methods", "keep_frames", "linear_frames", "name", NULL };
+					"reference", "methods", "keep_frames", "linear_frames", "name", "timing", NULL };
+static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const reference_keys[] = { "samples", NULL };
 static const char *const method_keys[] = { "name", "params", NULL };
 
@@ -288,6 +289,19 @@ static int parse_reference(const json_t *v, struct aa_job_spec *s, struct aa_err
 	return 0;
 }
 
+static int parse_timing(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+{
+	if (!json_is_object(v))
+		return bad(err, AA_ERR_INVALID, "timing", "expected an object like {\"repeat\": 5}, got %s",
+			   type_name(v));
+	if (check_keys(v, "timing", timing_keys, err) < 0)
+		return -1;
+	const json_t *repeat = json_object_get(v, "repeat");
+	if (repeat && get_int(repeat, "timing.repeat", 1, AA_MAX_REPEAT, &s->timing_repeat, err) < 0)
+		return -1;
+	return 0;
+}
+
 void aa_job_spec_defaults(struct aa_job_spec *spec)
 {
 	memset(spec, 0, sizeof *spec);
@@ -298,6 +312,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->frames = 1;
 	spec->first_frame = 0;
 	spec->reference_samples = 64;
+	spec->timing_repeat = 1;
 	spec->keep_frames = true;
 	spec->inject_nonfinite_frame = -1;
 	/* the default comparison: no AA against 16x supersampling */
@@ -361,6 +376,12 @@ int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa
 	}
 	if ((v = json_object_get(job, "name")) && get_string(v, "name", true, s.name, sizeof s.name, err) < 0)
 		return -1;
+	if ((v = json_object_get(job, "timing")) && parse_timing(v, &s, err) < 0)
+		return -1;
+	/* every timed render keeps its pass times: bound them as frames alone are bounded */
+	if ((long)s.frames * s.timing_repeat > AA_MAX_FRAMES)
+		return bad(err, AA_ERR_LIMIT, "timing.repeat", "%d frames x %d repeats is over %d timed renders per "
+			   "method; lower frames or timing.repeat", s.frames, s.timing_repeat, AA_MAX_FRAMES);
 	*spec = s;
 	return 0;
 }
@@ -374,10 +395,10 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 	json_t *methods = json_array();
 	for (int i = 0; methods && i < spec->method_count && i < AA_MAX_METHODS; i++)
 		json_array_append_new(methods, json_string(spec->methods[i].label));
-	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:b, s:s}",
+	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:b, s:s, s:{s:i}}",
 				"scene", spec->scene, "path", spec->path, "size", size, "frames", spec->frames,
 				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,
 				"methods", methods, "keep_frames", spec->keep_frames, "linear_frames",
-				spec->linear_frames, "name", spec->name);
+				spec->linear_frames, "name", spec->name, "timing", "repeat", spec->timing_repeat);
 	return job;
 }

@@ -34,6 +34,14 @@ enum aa_need {
 	AA_NEED_SUPERSAMPLED = 1u << 7,
 };
 
+/* How a method treats alpha-tested (cut-out) geometry (docs/methods.md, "Alpha-tested geometry"). */
+enum aa_alpha_rule {
+	AA_ALPHA_FROM_NEEDS = 0, /* not stated: per sample with history or supersampling, else per pixel */
+	AA_ALPHA_PER_PIXEL,      /* once per pixel and triangle, at its shading point (MSAA-style, 1-spp) */
+	AA_ALPHA_PER_SAMPLE,     /* every sample tested (supersampling, temporal accumulation) */
+	AA_ALPHA_TO_COVERAGE,    /* alpha sets the share of samples covered (a method's alpha_to_coverage) */
+};
+
 /* Parsed parameter values, in the order of the method's params table (enums as indices). */
 struct aa_method_params {
 	double v[AA_MAX_PARAMS];
@@ -53,6 +61,7 @@ struct aa_method {
 	const char *main_param;           /* the parameter a bare number sets ("ssaa:16"), or NULL */
 	unsigned needs;                   /* AA_NEED_* bits, may depend on params: see needs_fn */
 	unsigned (*needs_fn)(const struct aa_method_params *p);
+	enum aa_alpha_rule alpha_rule;    /* AA_ALPHA_FROM_NEEDS unless stated; see aa_method_alpha_rule */
 
 	int (*create)(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
 		      struct aa_method_state **out, struct aa_error *err);
@@ -96,6 +105,11 @@ void aa_method_label(const struct aa_method *m, const struct aa_method_params *p
  * main}]}] (the caller owns the array). `aalab methods --json` and aalabd's `methods` reply. */
 struct json_t;
 struct json_t *aa_methods_describe(void);
+/* The alpha rule a method runs with: alpha to coverage when its `alpha_to_coverage` parameter is true,
+ * else the stated rule, else per sample for methods with history or supersampling and per pixel for the
+ * rest. aa_alpha_rule_name: "per-pixel", "per-sample", "alpha-to-coverage". */
+enum aa_alpha_rule aa_method_alpha_rule(const struct aa_method *m, const struct aa_method_params *p);
+const char *aa_alpha_rule_name(enum aa_alpha_rule rule);
 /* Writes the value of parameter i as text ("16", "0.75", "high", "true"). */
 void aa_method_param_text(const struct aa_method *m, const struct aa_method_params *p, int i, char *out,
 			  size_t size);

@@ -125,6 +125,7 @@ const struct aa_method aa_method_msaa = {
 	.param_count = 3,
 	.main_param = "samples",
 	.needs = AA_NEED_MSAA,
+	.alpha_rule = AA_ALPHA_PER_PIXEL,
 	.create = msaa_create,
 	.render = msaa_render,
 	.reset = msaa_reset,

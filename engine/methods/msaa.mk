@@ -1,5 +1,6 @@
-# MSAA's shading point (one rule for hardware and virtual samples) and its tests: Makefile fragment,
-# included from Makefile.am.
+# MSAA's shading point (one rule for hardware and virtual samples), the alpha rule of every method family
+# and their tests: Makefile fragment, included from Makefile.am.
+libaaengine_a_SOURCES += engine/methods/alpha_rule.c
 glsl_files += shaders/virtual_sample.geom shaders/virtual_sample_gbuffer.geom
 EXTRA_DIST += shaders/shading_point.glsl
 $(glsl_headers): $(srcdir)/shaders/shading_point.glsl

@@ -221,6 +221,7 @@ const struct aa_method aa_method_rsaa = {
 	.param_count = 4,
 	.main_param = "samples",
 	.needs = AA_NEED_GBUFFER | AA_NEED_SUBSAMPLES,
+	.alpha_rule = AA_ALPHA_PER_PIXEL,
 	.create = rsaa_create,
 	.render = rsaa_render,
 	.reset = rsaa_reset,

@@ -86,6 +86,7 @@ const struct aa_method aa_method_ssaa = {
 	.param_count = 1,
 	.main_param = "samples",
 	.needs = AA_NEED_SUPERSAMPLED,
+	.alpha_rule = AA_ALPHA_PER_SAMPLE,
 	.create = ssaa_create,
 	.render = ssaa_render,
 	.reset = ssaa_reset,

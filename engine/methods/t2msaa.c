@@ -152,6 +152,7 @@ const struct aa_method aa_method_t2msaa = {
 	.param_count = 2,
 	.main_param = "offset",
 	.needs = AA_NEED_VELOCITY | AA_NEED_HISTORY | AA_NEED_MSAA,
+	.alpha_rule = AA_ALPHA_PER_PIXEL,
 	.create = t2msaa_create,
 	.render = t2msaa_render,
 	.reset = t2msaa_reset,

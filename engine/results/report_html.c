@@ -233,7 +233,7 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 	for (int i = 0; i < r->method_count; i++) {
 		if (!isfinite(sum[i].gpu_ms_median))
 			continue;
-		xmax = fmax(xmax, sum[i].gpu_ms_median);
+		xmax = fmax(xmax, isfinite(sum[i].gpu_ms.p90) ? sum[i].gpu_ms.p90 : sum[i].gpu_ms_median);
 		if (sum[i].psnr_identical) {
 			any_identical = any = true;
 		} else if (isfinite(sum[i].psnr_mean)) {
@@ -257,16 +257,22 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 	nice_range(&c.y0, &c.y1, &ystep);
 	fputs("<figure>\n", o);
 	chart_begin(&c, "GPU time per frame against mean PSNR, one point per method", xstep, ystep,
-		    "GPU ms per frame (median)", "PSNR dB (mean; higher is better)");
+		    "GPU ms per frame (median, bar p10-p90)", "PSNR dB (mean; higher is better)");
 	for (int i = 0; i < r->method_count; i++) {
 		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
 		if (!isfinite(sum[i].gpu_ms_median) || !(psnr == INFINITY || isfinite(psnr)))
 			continue;
 		const double x = cx(&c, sum[i].gpu_ms_median), y = cy(&c, psnr);
 		const bool right = x > CW - MR - 170; /* keep labels inside the chart */
+		/* the time's spread over every timed render: an error bar from p10 to p90 */
+		if (isfinite(sum[i].gpu_ms.p10) && isfinite(sum[i].gpu_ms.p90))
+			fprintf(o, "<path class=\"spread\" stroke=\"%s\" d=\"M%.1f %.1fH%.1fM%.1f %.1fv8M%.1f %.1fv8\"/>\n",
+				color(i), cx(&c, sum[i].gpu_ms.p10), y, cx(&c, sum[i].gpu_ms.p90), cx(&c, sum[i].gpu_ms.p10),
+				y - 4, cx(&c, sum[i].gpu_ms.p90), y - 4);
 		fprintf(o, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5.5\" fill=\"%s\"><title>", x, y, color(i));
 		esc(o, r->methods[i].label);
-		fprintf(o, ": %.2f ms, ", sum[i].gpu_ms_median);
+		fprintf(o, ": %.2f ms (p10-p90 %.2f-%.2f, n %d), ", sum[i].gpu_ms_median, sum[i].gpu_ms.p10,
+			sum[i].gpu_ms.p90, sum[i].gpu_ms.n);
 		if (sum[i].psnr_identical)
 			fputs("identical", o);
 		else
@@ -277,7 +283,8 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 		fputs("</text>\n", o);
 	}
 	fputs("</svg>\n<figcaption>Each point is one method: further left is cheaper, higher is closer to the "
-	      "reference.</figcaption>\n</figure>\n", o);
+	      "reference. Bars span the 10th to 90th percentile of the GPU time over every timed render.</figcaption>\n"
+	      "</figure>\n", o);
 }
 
 /* Share of pixels whose luminance error exceeds each threshold, log scale: the tail where methods differ. */
@@ -404,6 +411,7 @@ static const char style[] =
 	"svg .tick{font-size:11px;fill:#64748b}svg .axis{font-size:13px;fill:#334155}"
 	"svg .point{font-size:12px;fill:#0f172a;paint-order:stroke;stroke:#fff;stroke-width:3px}"
 	"svg .series{fill:none;stroke-width:2;stroke-linejoin:round}"
+	"svg .spread{fill:none;stroke-width:2;opacity:.55}"
 	".legend{list-style:none;padding:0;margin:6px 0 0;display:flex;flex-wrap:wrap;gap:4px 16px;font-size:13px}"
 	".method{background:var(--card);border:1px solid var(--line);border-radius:10px;padding:14px;margin:0 0 14px}"
 	".method .meta{color:var(--mute);font-size:13px;margin:0 0 10px}"
@@ -490,8 +498,12 @@ static double flip_mean(const struct aa_method_result *m)
 
 static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum)
 {
-	fputs("<table>\n<tr><th>Method</th><th>Path taken</th><th class=\"n\">GPU ms/frame<br>median</th>"
-	      "<th class=\"n\">GPU ms<br>p90</th><th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
+	fputs("<table>\n<tr><th>Method</th><th>Path taken</th>"
+	      "<th title=\"how cut-out (alpha-tested) materials were tested: per-pixel, per-sample or "
+	      "alpha-to-coverage\">Alpha test</th><th class=\"n\">GPU ms/frame<br>median</th>"
+	      "<th class=\"n\">GPU ms<br>p10&ndash;p90</th><th class=\"n\">GPU ms<br>min</th>"
+	      "<th class=\"n\" title=\"timed renders: frames x repeat\">n</th>"
+	      "<th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
 	      "<th class=\"n\">PSNR dB<br>mean</th><th class=\"n\">PSNR dB<br>worst frame</th><th class=\"n\">SSIM<br>mean</th>"
 	      "<th class=\"n\" title=\"perceived difference when flipping between method and reference, 0 = none\">"
 	      "FLIP<br>mean</th>"
@@ -508,11 +520,18 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		esc(o, r->methods[i].label);
 		fputs("</td><td>", o);
 		esc(o, r->methods[i].path_taken);
+		fputs("</td><td>", o);
+		if (r->methods[i].method)
+			esc(o, aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->gpu_ms_median, 2);
 		fputs("</td><td class=\"n\">", o);
-		put_num(o, s->gpu_ms_p90, 2);
+		put_num(o, s->gpu_ms.p10, 2);
+		fputs("&ndash;", o);
+		put_num(o, s->gpu_ms.p90, 2);
 		fputs("</td><td class=\"n\">", o);
+		put_num(o, s->gpu_ms.min, 2);
+		fprintf(o, "</td><td class=\"n\">%d</td><td class=\"n\">", s->gpu_ms.n);
 		put_num(o, s->cpu_ms_median, 2);
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, (double)r->methods[i].memory_bytes / 1048576.0, 1);
@@ -568,24 +587,20 @@ static void method_sections(FILE *o, const struct aa_job_result *r)
 		esc(o, m->label);
 		fputs("</h3>\n<p class=\"meta\">", o);
 		esc(o, *m->path_taken ? m->path_taken : "path not reported");
-		/* Median GPU time of each of the method's passes, from the first frame's pass list. */
-		if (m->frame_count > 0) {
-			double *t = malloc((size_t)m->frame_count * sizeof *t);
-			for (int k = 0; t && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
-				int n = 0;
-				for (int f = 0; f < m->frame_count; f++)
-					for (int q = 0; q < m->frames[f].pass_count && q < AA_MAX_PASSES; q++)
-						if (strcmp(m->frames[f].passes[q].name, m->frames[0].passes[k].name) == 0) {
-							t[n++] = m->frames[f].passes[q].gpu_ms;
-							break;
-						}
-				fputs(k ? ", " : " \xc2\xb7 passes: ", o);
-				esc(o, m->frames[0].passes[k].name);
-				fputc(' ', o);
-				put_num(o, aa_percentile(t, n, 50), 2);
-				fputs(" ms", o);
-			}
-			free(t);
+		/* GPU time of each of the method's passes over every timed render: median (p10-p90, n), from the
+		 * first frame's pass list */
+		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
+			struct aa_timing_stats t;
+			aa_pass_timing_stats(m, m->frames[0].passes[k].name, &t);
+			fputs(k ? ", " : " \xc2\xb7 passes: ", o);
+			esc(o, m->frames[0].passes[k].name);
+			fputc(' ', o);
+			put_num(o, t.median, 2);
+			fputs(" ms (", o);
+			put_num(o, t.p10, 2);
+			fputs("&ndash;", o);
+			put_num(o, t.p90, 2);
+			fprintf(o, ", n %d)", t.n);
 		}
 		for (int k = 0; k < m->memory_count && k < AA_MAX_MEMORY_ITEMS; k++) {
 			fputs(k ? ", " : " \xc2\xb7 memory: ", o);

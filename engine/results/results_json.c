@@ -127,15 +127,18 @@ static json_t *image_path(const struct aa_job_result *r, const char *kind, const
 	return str(rel);
 }
 
-/* Every pass name seen over the frames, in order of first appearance, with its median GPU time. */
-static json_t *pass_medians(struct builder *b, const struct aa_method_result *m)
+/* {"median", "p10", "p90", "min", "mean", "n"}: a time's distribution (null fields when n is 0). */
+static json_t *timing_json(const struct aa_timing_stats *t)
+{
+	return json_pack("{s:o, s:o, s:o, s:o, s:o, s:i}", "median", num(t->median), "p10", num(t->p10), "p90",
+			 num(t->p90), "min", num(t->min), "mean", num(t->mean), "n", t->n);
+}
+
+/* Every pass name seen over the frames, in order of first appearance, with its GPU time over every timed
+ * render that ran it: `gpu_ms` the median (as before), then the spread. */
+static json_t *pass_stats(struct builder *b, const struct aa_method_result *m)
 {
 	json_t *arr = json_array();
-	double *times = malloc((size_t)(m->frame_count > 0 ? m->frame_count : 1) * sizeof *times);
-	if (!times) {
-		b->ok = false;
-		return arr;
-	}
 	for (int i = 0; i < m->frame_count; i++) {
 		for (int k = 0; k < m->frames[i].pass_count && k < AA_MAX_PASSES; k++) {
 			const char *name = m->frames[i].passes[k].name;
@@ -147,20 +150,41 @@ static json_t *pass_medians(struct builder *b, const struct aa_method_result *m)
 				earlier = strcmp(m->frames[i].passes[q].name, name) == 0;
 			if (earlier)
 				continue;
-			int n = 0;
-			for (int j = i; j < m->frame_count; j++)
-				for (int q = 0; q < m->frames[j].pass_count && q < AA_MAX_PASSES; q++)
-					if (strcmp(m->frames[j].passes[q].name, name) == 0) {
-						times[n++] = m->frames[j].passes[q].gpu_ms;
-						break; /* once per frame */
-					}
+			struct aa_timing_stats t;
+			aa_pass_timing_stats(m, name, &t);
 			json_t *pass = json_object();
 			put(b, pass, "name", str(name));
-			put(b, pass, "gpu_ms", num(aa_percentile(times, n, 50)));
+			put(b, pass, "gpu_ms", num(t.median));
+			put(b, pass, "p10", num(t.p10));
+			put(b, pass, "p90", num(t.p90));
+			put(b, pass, "min", num(t.min));
+			put(b, pass, "n", json_integer(t.n));
 			push(b, arr, pass);
 		}
 	}
-	free(times);
+	return arr;
+}
+
+/* Every timed render in the order of frames and repeats: its place in the round's method order, totals
+ * and pass times by name. */
+static json_t *timed_renders_json(struct builder *b, const struct aa_method_result *m)
+{
+	json_t *arr = json_array();
+	for (int i = 0; m->timed && i < m->timed_count; i++) {
+		const struct aa_timed_render *t = &m->timed[i];
+		json_t *obj = json_object(), *passes = json_object();
+		const struct aa_frame_result *f = t->ordinal >= 0 && t->ordinal < m->frame_count ? &m->frames[t->ordinal]
+												  : NULL;
+		for (int k = 0; f && k < t->pass_count && k < f->pass_count && k < AA_MAX_PASSES; k++)
+			put(b, passes, f->passes[k].name, num(t->pass_ms[k]));
+		put(b, obj, "frame", json_integer(f ? f->frame : -1));
+		put(b, obj, "repeat", json_integer(t->repeat));
+		put(b, obj, "position", json_integer(t->position));
+		put(b, obj, "gpu_ms", num(t->gpu_ms));
+		put(b, obj, "cpu_ms", num(t->cpu_ms));
+		put(b, obj, "passes", passes);
+		push(b, arr, obj);
+	}
 	return arr;
 }
 
@@ -304,14 +328,16 @@ static json_t *method_json(struct builder *b, const struct aa_job_result *r, con
 	put(b, obj, "label", str(m->label));
 	put(b, obj, "params", params_json(b, m->method, &m->params));
 	put(b, obj, "path_taken", str(m->path_taken));
-	put(b, obj, "gpu_ms", json_pack("{s:o, s:o, s:o}", "median", num(s.gpu_ms_median), "p90", num(s.gpu_ms_p90),
-					 "mean", num(s.gpu_ms_mean)));
-	put(b, obj, "cpu_ms", json_pack("{s:o}", "median", num(s.cpu_ms_median)));
+	put(b, obj, "alpha_rule", str(m->method ? aa_alpha_rule_name(aa_method_alpha_rule(m->method, &m->params))
+						: ""));
+	put(b, obj, "gpu_ms", timing_json(&s.gpu_ms));
+	put(b, obj, "cpu_ms", timing_json(&s.cpu_ms));
 	put(b, obj, "memory_bytes", u64(m->memory_bytes));
 	for (int i = 0; i < m->memory_count && i < AA_MAX_MEMORY_ITEMS; i++)
 		push(b, memory, json_pack("{s:o, s:o}", "name", str(m->memory[i].name), "bytes", u64(m->memory[i].bytes)));
 	put(b, obj, "memory", memory);
-	put(b, obj, "passes", pass_medians(b, m));
+	put(b, obj, "passes", pass_stats(b, m));
+	put(b, obj, "timed_renders", timed_renders_json(b, m));
 	put(b, obj, "metrics", metrics_json(b, m, &s));
 	for (int i = 0; i < m->frame_count; i++)
 		push(b, frames, frame_json(b, r, m, i));
@@ -359,6 +385,7 @@ static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 	}
 	const double mse_mean = mse_n ? mse_sum / mse_n : NAN;
 	put(b, obj, "samples", json_integer(ref->samples));
+	put(b, obj, "alpha_rule", str(aa_alpha_rule_name(AA_ALPHA_PER_SAMPLE))); /* each jittered render tests its own */
 	put(b, obj, "pattern", str(ref->pattern));
 	put(b, obj, "memory_bytes", u64(ref->memory_bytes));
 	put(b, obj, "gpu_ms", json_pack("{s:o, s:o}", "median", num(aa_percentile(v, n, 50)), "p90",
@@ -388,6 +415,10 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 	put(&b, root, "size", json_pack("{s:i, s:i}", "width", r->spec.width, "height", r->spec.height));
 	put(&b, root, "frames", json_integer(r->spec.frames));
 	put(&b, root, "first_frame", json_integer(r->spec.first_frame));
+	/* how times were taken: every method's frame `repeat` times, the order rotating each round */
+	put(&b, root, "timing", json_pack("{s:i, s:s, s:i}", "repeat", r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1,
+					  "order", "rotating", "timed_renders_per_method",
+					  r->spec.frames * (r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1)));
 	for (int i = 0; i < r->plan_count && i < AA_MAX_PASSES; i++)
 		push(&b, plan, json_pack("{s:o, s:o, s:b}", "pass", str(r->plan[i].pass), "reason", str(r->plan[i].reason),
 					 "ran", r->plan[i].ran));

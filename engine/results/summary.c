@@ -51,6 +51,63 @@ static double finite_mean(const double *values, int n)
 	return count ? sum / count : NAN;
 }
 
+void aa_timing_stats_of(const double *values, int n, struct aa_timing_stats *out)
+{
+	*out = (struct aa_timing_stats){NAN, NAN, NAN, NAN, NAN, 0};
+	for (int i = 0; values && i < n; i++)
+		if (isfinite(values[i])) {
+			out->n++;
+			if (!(values[i] >= out->min))
+				out->min = values[i];
+		}
+	if (out->n == 0)
+		return;
+	out->median = aa_percentile(values, n, 50);
+	out->p10 = aa_percentile(values, n, 10);
+	out->p90 = aa_percentile(values, n, 90);
+	out->mean = finite_mean(values, n);
+}
+
+/* Times of every timed render, or of the scored frames for results without any (older files). */
+static int collect_times(const struct aa_method_result *m, bool gpu, double *out)
+{
+	int n = 0;
+	if (m->timed && m->timed_count > 0) {
+		for (int i = 0; i < m->timed_count; i++)
+			out[n++] = gpu ? m->timed[i].gpu_ms : m->timed[i].cpu_ms;
+	} else {
+		for (int i = 0; m->frames && i < m->frame_count; i++)
+			out[n++] = gpu ? m->frames[i].gpu_ms : m->frames[i].cpu_ms;
+	}
+	return n;
+}
+
+void aa_pass_timing_stats(const struct aa_method_result *m, const char *name, struct aa_timing_stats *out)
+{
+	int cap = m->timed_count > m->frame_count ? m->timed_count : m->frame_count;
+	double *v = malloc((size_t)(cap > 0 ? cap : 1) * sizeof *v);
+	int n = 0;
+	for (int i = 0; v && m->timed && i < m->timed_count; i++) {
+		const struct aa_timed_render *t = &m->timed[i];
+		if (t->ordinal < 0 || t->ordinal >= m->frame_count)
+			continue;
+		const struct aa_frame_result *f = &m->frames[t->ordinal];
+		for (int k = 0; k < t->pass_count && k < f->pass_count && k < AA_MAX_PASSES; k++)
+			if (strcmp(f->passes[k].name, name) == 0) {
+				v[n++] = t->pass_ms[k];
+				break; /* once per render */
+			}
+	}
+	for (int i = 0; v && (!m->timed || m->timed_count == 0) && m->frames && i < m->frame_count; i++)
+		for (int k = 0; k < m->frames[i].pass_count && k < AA_MAX_PASSES; k++)
+			if (strcmp(m->frames[i].passes[k].name, name) == 0) {
+				v[n++] = m->frames[i].passes[k].gpu_ms;
+				break;
+			}
+	aa_timing_stats_of(v, n, out);
+	free(v);
+}
+
 /* Orders frames by quality: identical beats any PSNR; a frame without a usable PSNR ranks last. */
 static double psnr_rank(const struct aa_frame_result *f)
 {
@@ -69,24 +126,27 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flicker_mean = NAN,
 		.best_frame = -1, .worst_frame = -1, .best_psnr = NAN, .worst_psnr = NAN,
 	};
+	aa_timing_stats_of(NULL, 0, &out->gpu_ms);
+	aa_timing_stats_of(NULL, 0, &out->cpu_ms);
 	const int n = m->frames ? m->frame_count : 0;
 	if (n <= 0)
 		return;
-	double *v = malloc((size_t)n * 5 * sizeof *v);
+	const int timed = m->timed && m->timed_count > n ? m->timed_count : n;
+	double *v = malloc((size_t)(3 * n + 2 * timed) * sizeof *v);
 	if (!v)
 		return;
-	double *gpu = v, *cpu = v + n, *mse = v + 2 * n, *ssim = v + 3 * n, *flicker = v + 4 * n;
+	double *mse = v, *ssim = v + n, *flicker = v + 2 * n, *gpu = v + 3 * n, *cpu = gpu + timed;
 	for (int i = 0; i < n; i++) {
-		gpu[i] = m->frames[i].gpu_ms;
-		cpu[i] = m->frames[i].cpu_ms;
 		mse[i] = m->frames[i].metrics.identical ? 0.0 : m->frames[i].metrics.mse;
 		ssim[i] = m->frames[i].metrics.ssim;
 		flicker[i] = m->frames[i].flicker;
 	}
-	out->gpu_ms_median = aa_percentile(gpu, n, 50);
-	out->gpu_ms_p90 = aa_percentile(gpu, n, 90);
-	out->gpu_ms_mean = finite_mean(gpu, n);
-	out->cpu_ms_median = aa_percentile(cpu, n, 50);
+	aa_timing_stats_of(gpu, collect_times(m, true, gpu), &out->gpu_ms);
+	aa_timing_stats_of(cpu, collect_times(m, false, cpu), &out->cpu_ms);
+	out->gpu_ms_median = out->gpu_ms.median;
+	out->gpu_ms_p90 = out->gpu_ms.p90;
+	out->gpu_ms_mean = out->gpu_ms.mean;
+	out->cpu_ms_median = out->cpu_ms.median;
 	out->mse_mean = finite_mean(mse, n);
 	out->ssim_mean = finite_mean(ssim, n);
 	out->flicker_mean = finite_mean(flicker, n); /* frame 0 has none (NAN) */
@@ -121,6 +181,9 @@ void aa_job_result_free(struct aa_job_result *r)
 		free(r->methods[i].frames);
 		r->methods[i].frames = NULL;
 		r->methods[i].frame_count = 0;
+		free(r->methods[i].timed);
+		r->methods[i].timed = NULL;
+		r->methods[i].timed_count = 0;
 	}
 	free(r->reference.frames);
 	r->reference.frames = NULL;
