@@ -10,3 +10,9 @@ tests_integration_test_msaa_SOURCES = tests/integration/test_msaa.c $(GPU_TEST_F
 tests_integration_test_msaa_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_msaa_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_msaa
+
+check_PROGRAMS += tests/integration/test_alpha_rule
+tests_integration_test_alpha_rule_SOURCES = tests/integration/test_alpha_rule.c $(GPU_TEST_FIXTURE)
+tests_integration_test_alpha_rule_CFLAGS = $(TEST_CFLAGS)
+tests_integration_test_alpha_rule_LDADD = $(TEST_LIBS)
+TESTS += tests/integration/test_alpha_rule

@@ -201,23 +201,6 @@ static void test_ssaa_beats_none(void **state)
 	fixture_free(r);
 }
 
-/* Virtual MSAA samples shade once per pixel at its centre, as hardware MSAA does: on a lit, shadowed,
- * textured scene the two 4x paths must score alike (they differ only where perspective bends the
- * extrapolated attributes). A regression test for shading at the sample instead, or at a wrong offset. */
-static void test_virtual_msaa_matches_hardware(void **state)
-{
-	(void)state;
-	const char *methods[] = {"msaa:4,path=hardware", "msaa:4,path=virtual"};
-	struct aa_job_spec spec;
-	fixture_spec(&spec, "hard-edges", methods, 2, 320, 180, 1, 16);
-	snprintf(spec.path, sizeof spec.path, "static");
-	struct aa_job_result *r = fixture_run(&spec, NULL, NULL, NULL);
-	double hw = r->methods[0].frames[0].metrics.psnr, virt = r->methods[1].frames[0].metrics.psnr;
-	printf("  hard-edges 320x180: msaa:4 hardware %.2f dB, virtual %.2f dB\n", hw, virt);
-	assert_true(fabs(hw - virt) < 0.75);
-	fixture_free(r);
-}
-
 static int hash_frames(const struct aa_event *ev, void *user)
 {
 	uint64_t *h = user;
@@ -266,7 +249,6 @@ int main(void)
 		cmocka_unit_test(test_reference_converges_to_exact_coverage),
 		cmocka_unit_test(test_ssaa_beats_none),
 		cmocka_unit_test(test_every_scene_every_method_finite),
-		cmocka_unit_test(test_virtual_msaa_matches_hardware),
 		cmocka_unit_test(test_uploaded_scene_is_reused),
 	};
 	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);

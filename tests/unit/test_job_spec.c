@@ -37,6 +37,7 @@ static void assert_spec_equal(const struct aa_job_spec *a, const struct aa_job_s
 	assert_int_equal(a->frames, b->frames);
 	assert_int_equal(a->first_frame, b->first_frame);
 	assert_int_equal(a->reference_samples, b->reference_samples);
+	assert_int_equal(a->timing_repeat, b->timing_repeat);
 	assert_int_equal(a->keep_frames, b->keep_frames);
 	assert_string_equal(a->name, b->name);
 	assert_int_equal(a->method_count, b->method_count);
@@ -87,6 +88,7 @@ static void test_defaults(void **state)
 	assert_int_equal(s.frames, 1);
 	assert_int_equal(s.first_frame, 0);
 	assert_int_equal(s.reference_samples, 64);
+	assert_int_equal(s.timing_repeat, 1);
 	assert_true(s.keep_frames);
 	assert_int_equal(s.method_count, 2);
 	assert_string_equal(s.methods[0].method->name, "none");
@@ -110,9 +112,10 @@ static void test_good_job(void **state)
 			    " \"first_frame\": 4, \"reference\": {\"samples\": 16},"
 			    " \"methods\": [\"none\", \"ssaa:4\", {\"name\": \"ssaa\", \"params\": {\"samples\": 9}},"
 			    "               \" ssaa : samples = 36 \", \"ssaa\"],"
-			    " \"keep_frames\": false, \"name\": \"nightly <1>\"}",
+			    " \"keep_frames\": false, \"name\": \"nightly <1>\", \"timing\": {\"repeat\": 5}}",
 			    &s, &err);
 	assert_int_equal(rc, 0);
+	assert_int_equal(s.timing_repeat, 5);
 	assert_string_equal(s.path, "orbit");
 	assert_int_equal(s.width, 320);
 	assert_int_equal(s.height, 180);
@@ -212,6 +215,12 @@ static const struct bad_case bad_cases[] = {
 	{ "{\"methods\": [{\"name\": \"nosuch-aa\"}]}", AA_ERR_NOT_FOUND, "methods[0].name",
 	  "unknown method \"nosuch-aa\"; known methods: " },
 	{ "{\"keep_frames\": 1}", AA_ERR_INVALID, "keep_frames", "keep_frames: expected true or false, got an integer" },
+	{ "{\"timing\": 5}", AA_ERR_INVALID, "timing", "timing: expected an object like {\"repeat\": 5}" },
+	{ "{\"timing\": {\"repeats\": 5}}", AA_ERR_INVALID, "timing.repeats", "unknown key; valid keys: repeat" },
+	{ "{\"timing\": {\"repeat\": 0}}", AA_ERR_INVALID, "timing.repeat", "0 is out of range; valid range: 1 to 100" },
+	{ "{\"timing\": {\"repeat\": \"3\"}}", AA_ERR_INVALID, "timing.repeat", "expected an integer, got a string" },
+	{ "{\"frames\": 2000, \"timing\": {\"repeat\": 51}}", AA_ERR_LIMIT, "timing.repeat",
+	  "2000 frames x 51 repeats is over 100000 timed renders per method" },
 	{ "{\"name\": null}", AA_ERR_INVALID, "name", "name: expected a string, got null" },
 };
 
@@ -406,6 +415,7 @@ static void test_round_trip(void **state)
 	assert_int_equal(parse_text("{\"scene\": \"scenes/wires.json\", \"path\": \"static\", \"size\": [320, 200],"
 				    " \"frames\": 3, \"first_frame\": 7, \"reference\": {\"samples\": 128},"
 				    " \"methods\": [\"ssaa:4\", \"none\", {\"name\": \"ssaa\"}], \"keep_frames\": false,"
+				    " \"timing\": {\"repeat\": 7},"
 				    " \"name\": \"r\\u00e9sum\\u00e9\"}",
 				    &s, &err),
 			 0);

@@ -180,6 +180,45 @@ static void test_percentile(void **state)
 	assert_true(isnan(aa_percentile(none, 2, 50)));
 }
 
+/* Timing distributions: median, p10, p90, min, mean and n, non-finite values skipped; the summary and
+ * each pass take them from every timed render (repeats included), not from the scored frames alone. */
+static void test_timing_stats(void **state)
+{
+	(void)state;
+	double ten[] = { 10, 1, 9, 2, 8, 3, 7, 4, 6, 5, NAN };
+	struct aa_timing_stats t;
+	aa_timing_stats_of(ten, 11, &t);
+	assert_int_equal(t.n, 10);
+	assert_true(t.median == 5.5 && t.min == 1 && t.mean == 5.5);
+	assert_true(fabs(t.p10 - 1.9) < 1e-12 && fabs(t.p90 - 9.1) < 1e-12);
+	aa_timing_stats_of(NULL, 0, &t);
+	assert_true(t.n == 0 && isnan(t.median) && isnan(t.min) && isnan(t.p10));
+
+	struct aa_frame_result frames[2] = {
+		{ .frame = 0, .pass_count = 2, .passes = { { "scene", 10 }, { "resolve", 2 } }, .gpu_ms = 12, .cpu_ms = 13 },
+		{ .frame = 1, .pass_count = 2, .passes = { { "scene", 11 }, { "resolve", 3 } }, .gpu_ms = 14, .cpu_ms = 15 },
+	};
+	/* 2 frames x 3 repeats; the second frame's last repeat ran other passes: it keeps its total only */
+	struct aa_timed_render timed[6] = {
+		{ 0, 0, 0, 12, 13, 2, { 10, 2 } }, { 0, 1, 1, 20, 21, 2, { 18, 2 } }, { 0, 2, 2, 30, 31, 2, { 27, 3 } },
+		{ 1, 0, 1, 14, 15, 2, { 11, 3 } }, { 1, 1, 2, 16, 17, 2, { 12, 4 } }, { 1, 2, 0, 40, 41, 0, { 0 } },
+	};
+	struct aa_method_result m = { .frame_count = 2, .frames = frames, .timed_count = 6, .timed = timed };
+	struct aa_method_summary s;
+	aa_method_summarize(&m, &s);
+	assert_int_equal(s.gpu_ms.n, 6);
+	assert_true(s.gpu_ms.median == 18 && s.gpu_ms.min == 12 && s.gpu_ms_median == 18);
+	assert_true(fabs(s.gpu_ms.p90 - 35) < 1e-12 && fabs(s.gpu_ms.p10 - 13) < 1e-12);
+	assert_true(s.cpu_ms.median == 19 && s.cpu_ms.n == 6);
+	aa_pass_timing_stats(&m, "scene", &t);
+	assert_int_equal(t.n, 5);
+	assert_true(t.median == 12 && t.min == 10);
+	aa_pass_timing_stats(&m, "resolve", &t);
+	assert_true(t.n == 5 && t.median == 3);
+	aa_pass_timing_stats(&m, "missing", &t);
+	assert_true(t.n == 0 && isnan(t.median));
+}
+
 static void test_summarize(void **state)
 {
 	(void)state;
@@ -528,6 +567,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_percentile),
+		cmocka_unit_test(test_timing_stats),
 		cmocka_unit_test(test_summarize),
 		cmocka_unit_test(test_to_json),
 		cmocka_unit_test(test_write_json),
