@@ -8,7 +8,8 @@
 static const char status_help[] =
 	"usage: aalab status JOB [--connect ADDRESS] [--json]\n"
 	"\n"
-	"Shows a job's state and progress; once it is done, each method's GPU ms, memory, PSNR and SSIM.\n";
+	"Shows a job's state and progress; once it is done, each method's GPU ms (median, p10-p90, n), memory,\n"
+	"PSNR, SSIM and alpha rule.\n";
 
 static void print_summary(json_t *summary)
 {
@@ -21,10 +22,18 @@ static void print_summary(json_t *summary)
 			snprintf(psnr_text, sizeof psnr_text, "%.2f dB", json_number_value(psnr));
 		else
 			snprintf(psnr_text, sizeof psnr_text, "identical");
-		printf("  %-24s %9.3f ms %8.2f MB  PSNR %-10s SSIM %.4f\n",
+		/* the GPU time's spread and count, and the alpha rule, when the daemon's summary has them */
+		char spread[64] = "";
+		if (json_is_number(json_object_get(m, "gpu_ms_p10")) && json_is_number(json_object_get(m, "gpu_ms_p90")))
+			snprintf(spread, sizeof spread, " (p10-p90 %.2f-%.2f, n %lld)",
+				 json_number_value(json_object_get(m, "gpu_ms_p10")),
+				 json_number_value(json_object_get(m, "gpu_ms_p90")),
+				 (long long)json_integer_value(json_object_get(m, "gpu_ms_n")));
+		const char *alpha = json_string_value(json_object_get(m, "alpha_rule"));
+		printf("  %-24s %9.3f ms%s %8.2f MB  PSNR %-10s SSIM %.4f%s%s\n",
 		       json_string_value(json_object_get(m, "label")), json_number_value(json_object_get(m, "gpu_ms")),
-		       json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
-		       json_number_value(json_object_get(m, "ssim")));
+		       spread, json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
+		       json_number_value(json_object_get(m, "ssim")), alpha ? "  alpha " : "", alpha ? alpha : "");
 	}
 }
 
