@@ -81,7 +81,9 @@ void aa_print_results_table(json_t *results, FILE *out)
 {
 	size_t i;
 	json_t *m;
-	fprintf(out, "| method | GPU ms/frame | MB | PSNR dB | SSIM |\n| --- | --- | --- | --- | --- |\n");
+	/* GPU ms: the median over every timed render, its 10th-90th percentile range and their count */
+	fprintf(out, "| method | GPU ms/frame | p10-p90 ms | n | MB | PSNR dB | SSIM | alpha test |\n"
+		     "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
 	json_array_foreach(json_object_get(results, "methods"), i, m) {
 		json_t *metrics = json_object_get(m, "metrics");
 		json_t *psnr = json_object_get(json_object_get(metrics, "psnr"), "mean");
@@ -90,10 +92,14 @@ void aa_print_results_table(json_t *results, FILE *out)
 			snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(psnr));
 		else
 			snprintf(psnr_text, sizeof psnr_text, "identical");
-		fprintf(out, "| %s | %.1f | %.1f | %s | %.4f |\n", json_string_value(json_object_get(m, "label")),
-			json_number_value(json_object_get(json_object_get(m, "gpu_ms"), "median")),
+		json_t *gpu = json_object_get(m, "gpu_ms");
+		const char *alpha = json_string_value(json_object_get(m, "alpha_rule"));
+		fprintf(out, "| %s | %.1f | %.1f-%.1f | %lld | %.1f | %s | %.4f | %s |\n",
+			json_string_value(json_object_get(m, "label")), json_number_value(json_object_get(gpu, "median")),
+			json_number_value(json_object_get(gpu, "p10")), json_number_value(json_object_get(gpu, "p90")),
+			(long long)json_integer_value(json_object_get(gpu, "n")),
 			json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
-			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")));
+			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")), alpha ? alpha : "-");
 	}
 }
 
