@@ -1,6 +1,7 @@
 /* The renderer: uploads a scene once, then records shadow, scene and full-screen passes for methods and
  * the reference. Only the passes in the frame plan are created or recorded. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,7 +61,7 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 {
 	struct aa_gpu *g = r->gpu;
-	VkDescriptorType types[5] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+	VkDescriptorType types[5] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
 	if (aa_gpu_layout_create(g, types, NULL, 5, sizeof(struct aa_draw_push), &r->scene_layout, err))
@@ -101,19 +102,25 @@ static bool desc_equal(const struct aa_scene_target_desc *a, const struct aa_sce
 	return a->samples == b->samples && a->outputs == b->outputs && a->depth_readable == b->depth_readable &&
 	       a->edge_distances == b->edge_distances && a->virtual_samples == b->virtual_samples &&
 	       a->geometry_at_sample == b->geometry_at_sample && a->alpha_to_coverage == b->alpha_to_coverage &&
-	       a->texture_lod_bias == b->texture_lod_bias;
+	       a->texture_lod_bias == b->texture_lod_bias && a->constant_colour == b->constant_colour;
 }
 
 /* Specialization constants of the scene fragment shaders, one 4-byte value per constant_id in order: the
  * alpha test, the G-buffer's geometry_at_sample, the texture LOD bias, then shading_point.glsl's mode,
- * pattern size, alpha to coverage and the pattern's positions. IDs a shader lacks are ignored. */
-#define SCENE_CONSTANT_COUNT 22
+ * pattern size, alpha to coverage and the pattern's positions, then shading.glsl's material class and
+ * the scene's lights (what each pipeline compiles in). IDs a shader lacks are ignored. */
+#define SCENE_CONSTANT_COUNT 28
 struct scene_constants {
 	VkBool32 alpha_test, geometry_at_sample;
 	float lod_bias;
 	int32_t mode, pattern_samples;
 	VkBool32 alpha_to_coverage;
 	float pattern[16]; /* x0, y0, ... x7, y7 */
+	uint32_t material_pattern;  /* 22: struct aa_material_class */
+	VkBool32 unlit, specular;
+	int32_t light_count;        /* 25: the frame uniforms' lights */
+	uint32_t point_lights;
+	int32_t shadow_light;
 };
 _Static_assert(sizeof(struct scene_constants) == SCENE_CONSTANT_COUNT * 4, "one 4-byte value per constant");
 
@@ -173,22 +180,31 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 	VkSpecializationMapEntry entries[SCENE_CONSTANT_COUNT];
 	VkSpecializationInfo spec;
 	scene_constants_fill(d, &constants, entries, &spec);
+	constants.light_count = r->light_count;
+	constants.point_lights = r->point_lights;
+	constants.shadow_light = r->shadow_light;
 	const char *geom = d->edge_distances ? "gbaa.geom" : NULL;
 	if (d->virtual_samples) /* the barycentric coordinates shading_point.glsl tests coverage with */
 		geom = d->outputs ? "virtual_sample_gbuffer.geom" : "virtual_sample.geom";
 	struct aa_gpu_graphics_desc g = {
 		.vert = d->outputs ? "gbuffer.vert" : "scene.vert",
-		.frag = d->outputs ? "gbuffer.frag" : d->edge_distances ? "gbaa.frag" : "scene.frag",
+		.frag = d->outputs ? "gbuffer.frag" : d->edge_distances ? "gbaa.frag"
+			: d->constant_colour ? "floor.frag" : "scene.frag",
 		.geom = geom, .vertex_layout = AA_VERTEX_SCENE,
 		.render_pass = v->pass, .color_count = pass.color_count, .samples = d->samples ? d->samples : 1,
 		.depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
 		.layout = r->scene_layout.layout, .frag_specialization = &spec,
 	};
-	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->opaque, err))
-		return -1;
-	if (r->plan.alpha_test) {
+	for (int c = 0; c < r->material_class_count; c++) {
+		const struct aa_material_class *mc = &r->material_classes[c];
+		constants.material_pattern = mc->pattern;
+		constants.unlit = mc->unlit;
+		constants.specular = mc->specular;
+		constants.alpha_test = VK_FALSE;
+		if (mc->opaque_used && aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->opaque[c], err))
+			return -1;
 		constants.alpha_test = VK_TRUE;
-		if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->cutout, err))
+		if (mc->cutout_used && aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->cutout[c], err))
 			return -1;
 	}
 	return r->variant_count++;
@@ -207,12 +223,53 @@ static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 			return -1;
 		VkDescriptorSet set = r->texture_sets[i];
 		aa_gpu_write_buffer(r->gpu, set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &r->frame_ubo);
-		aa_gpu_write_buffer(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->upload->materials);
+		aa_gpu_write_buffer_range(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, &r->upload->materials,
+					  sizeof(struct aa_material_gpu));
 		aa_gpu_write_image(r->gpu, set, 2, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				   r->gpu->sampler_linear, &r->upload->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_image(r->gpu, set, 3, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				   r->gpu->sampler_shadow, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_buffer(r->gpu, set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->prev_models);
+	}
+	return 0;
+}
+
+/* The scene's lights as the frame uniforms hold them, and the material classes its objects draw with. */
+static int classify_scene(struct aa_renderer *r, struct aa_error *err)
+{
+	const struct aa_scene *s = r->scene;
+	r->shadow_light = -1;
+	r->light_count = s->light_count < AA_MAX_LIGHTS ? s->light_count : AA_MAX_LIGHTS;
+	for (int i = 0; i < r->light_count; i++) {
+		const struct aa_light *l = &s->lights[i];
+		bool point = l->type == AA_LIGHT_POINT;
+		if (point)
+			r->point_lights |= 1u << i;
+		if (r->plan.shadow_map && r->shadow_light < 0 && l->casts_shadow && !point)
+			r->shadow_light = i;
+	}
+	r->object_class = calloc((size_t)(s->object_count ? s->object_count : 1), sizeof *r->object_class);
+	if (!r->object_class)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	for (int o = 0; o < s->object_count; o++) {
+		const struct aa_material *m = &s->materials[s->objects[o].material_index];
+		struct aa_material_class key = {.pattern = (uint32_t)m->pattern, .unlit = m->unlit,
+						.specular = m->specular > 0.0f};
+		int c = 0;
+		while (c < r->material_class_count &&
+		       !(r->material_classes[c].pattern == key.pattern && r->material_classes[c].unlit == key.unlit &&
+			 r->material_classes[c].specular == key.specular))
+			c++;
+		if (c == r->material_class_count) {
+			if (c == AA_MAX_MATERIAL_CLASSES) /* 4 patterns x unlit x specular: cannot happen */
+				return aa_error_set(err, AA_ERR_INTERNAL, "", "too many material classes");
+			r->material_classes[r->material_class_count++] = key;
+		}
+		if (m->alpha_cutout && r->plan.alpha_test)
+			r->material_classes[c].cutout_used = true;
+		else
+			r->material_classes[c].opaque_used = true;
+		r->object_class[o] = (uint8_t)c;
 	}
 	return 0;
 }
@@ -236,7 +293,8 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 	    aa_gpu_buffer_create(gpu, &r->prev_models,
 				 sizeof(mat4) * (VkDeviceSize)(scene->object_count ? scene->object_count : 1),
 				 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, err) ||
-	    create_shadow_map(r, err) || create_pipelines(r, err) || create_descriptors(r, err)) {
+	    classify_scene(r, err) || create_shadow_map(r, err) || create_pipelines(r, err) ||
+	    create_descriptors(r, err)) {
 		if (!r->models)
 			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		aa_renderer_destroy(r);
@@ -256,8 +314,10 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	aa_gpu_pipeline_destroy(g, &r->shadow_pipeline);
 	/* variant pipelines borrow the scene layout, so they own only their VkPipeline */
 	for (int i = 0; i < r->variant_count; i++) {
-		aa_gpu_pipeline_destroy(g, &r->variants[i].opaque);
-		aa_gpu_pipeline_destroy(g, &r->variants[i].cutout);
+		for (int c = 0; c < r->material_class_count; c++) {
+			aa_gpu_pipeline_destroy(g, &r->variants[i].opaque[c]);
+			aa_gpu_pipeline_destroy(g, &r->variants[i].cutout[c]);
+		}
 		vkDestroyRenderPass(g->device, r->variants[i].pass, NULL);
 	}
 	aa_gpu_pipeline_destroy(g, &r->scene_layout);
@@ -274,6 +334,7 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	aa_gpu_buffer_destroy(g, &r->prev_models);
 	free(r->texture_sets);
 	free(r->models);
+	free(r->object_class);
 	free(r);
 }
 
@@ -348,7 +409,7 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 		}
 		u->lights[i].position_type[3] = point ? 1.0f : 0.0f;
 		u->lights[i].color_range[3] = l->range;
-		if (r->plan.shadow_map && shadow_light < 0 && l->casts_shadow && !point) {
+		if (i == r->shadow_light) {
 			shadow_light = i;
 			u->lights[i].shadow[0] = 1.0f;
 		}
@@ -398,27 +459,34 @@ static VkDescriptorSet object_set(struct aa_renderer *r, int o)
 	return r->texture_sets[t];
 }
 
+/* Draws every object: opaque ones first, cut-outs with the discard pipelines after them. opaque and
+ * cutout hold one pipeline per material class, or one for all objects when classes is 1. */
 static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struct aa_gpu_pipeline *opaque,
-			 const struct aa_gpu_pipeline *cutout, float jx, float jy)
+			 const struct aa_gpu_pipeline *cutout, int classes, float jx, float jy)
 {
 	VkDeviceSize zero = 0;
 	vkCmdBindVertexBuffers(cmd, 0, 1, &r->upload->vertices.buffer, &zero);
 	vkCmdBindIndexBuffer(cmd, r->upload->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-	/* opaque objects first, cut-outs with the discard pipeline after them */
 	for (int pass = 0; pass < 2; pass++) {
-		const struct aa_gpu_pipeline *p = pass == 0 ? opaque : cutout;
-		if (!p || !p->pipeline)
-			continue;
-		vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
+		VkPipeline bound = VK_NULL_HANDLE;
 		for (int o = 0; o < r->scene->object_count; o++) {
 			const struct aa_object *obj = &r->scene->objects[o];
+			int c = classes > 1 ? r->object_class[o] : 0;
 			bool is_cutout = r->scene->materials[obj->material_index].alpha_cutout && cutout &&
-					 cutout->pipeline;
+					 cutout[c].pipeline;
 			if (is_cutout != (pass == 1))
 				continue;
+			const struct aa_gpu_pipeline *p = is_cutout ? &cutout[c] : &opaque[c];
+			if (!p->pipeline)
+				continue;
+			if (p->pipeline != bound) {
+				vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
+				bound = p->pipeline;
+			}
 			VkDescriptorSet set = object_set(r, o);
+			uint32_t material_offset = (uint32_t)(obj->material_index * r->upload->material_stride);
 			vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_layout.layout, 0, 1,
-						&set, 0, NULL);
+						&set, 1, &material_offset);
 			push_object(r, cmd, o, jx, jy);
 			const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
 			vkCmdDrawIndexed(cmd, m->index_count, 1, r->upload->mesh_first_index[obj->mesh_index],
@@ -434,7 +502,7 @@ void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 	VkClearValue clear = {.depthStencil = {0.0f, 0}};
 	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
 			  &clear, 1);
-	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 0.0f, 0.0f);
+	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 1, 0.0f, 0.0f);
 	vkCmdEndRenderPass(cmd);
 	r->shadow_map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
@@ -544,7 +612,7 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 	clears[n++] = (VkClearValue){.color = {.float32 = {0, 0, 0, 0}}};
 	aa_gpu_begin_pass(cmd, v->pass, t->framebuffer, t->width, t->height, clears, n);
 	/* NDC spans 2 units over the target: a jitter of j pixels is 2j/size in NDC. */
-	draw_objects(r, cmd, &v->opaque, &v->cutout, 2.0f * jitter_x_px / t->width,
+	draw_objects(r, cmd, v->opaque, v->cutout, r->material_class_count, 2.0f * jitter_x_px / t->width,
 		     2.0f * jitter_y_px / t->height);
 	vkCmdEndRenderPass(cmd);
 	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

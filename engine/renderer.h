@@ -78,12 +78,23 @@ struct aa_scene_target_desc {
 	bool alpha_to_coverage;     /* MSAA targets (samples > 1 or virtual): cut-out alpha sets how many samples
 				     * a fragment covers (the first round(alpha N)) instead of the cutoff test */
 	float texture_lod_bias;     /* added to every texture fetch's mip level (the reference: finer) */
+	bool constant_colour;       /* the `floor` benchmark: the same geometry and depth test, no shading */
+};
+
+/* What a scene pipeline compiles in for one kind of material: shaders/shading.glsl's specialization
+ * constants. llvmpipe executes every branch under a mask, so each class gets only its own paths. */
+#define AA_MAX_MATERIAL_CLASSES 16
+struct aa_material_class {
+	uint32_t pattern;          /* AA_PATTERN_* */
+	bool unlit, specular;
+	bool opaque_used, cutout_used; /* drawn by an opaque object / a cut-out object with alpha test */
 };
 
 struct aa_scene_variant {
 	struct aa_scene_target_desc desc;
 	VkRenderPass pass;
-	struct aa_gpu_pipeline opaque, cutout; /* borrow the renderer's scene layout */
+	/* per material class (renderer.material_classes); borrow the renderer's scene layout */
+	struct aa_gpu_pipeline opaque[AA_MAX_MATERIAL_CLASSES], cutout[AA_MAX_MATERIAL_CLASSES];
 };
 
 /* A colour + depth target the scene pass draws into. */
@@ -132,6 +143,11 @@ struct aa_renderer {
 	struct aa_gpu_pipeline shadow_pipeline, shadow_cutout_pipeline;
 	VkDescriptorPool pool;
 	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
+	struct aa_material_class material_classes[AA_MAX_MATERIAL_CLASSES];
+	int material_class_count;
+	uint8_t *object_class;           /* per object: its material's class */
+	int light_count, shadow_light;   /* lights in the frame uniforms; the one using the shadow map or -1 */
+	uint32_t point_lights;           /* bit i: light i is a point light */
 	struct aa_frame_uniforms uniforms;
 	struct aa_gpu_buffer prev_models; /* per object, previous frame's model matrix (host-visible) */
 	mat4 *models;                    /* per object, this frame */

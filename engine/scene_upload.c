@@ -44,28 +44,35 @@ static int upload_geometry(struct aa_scene_upload *r, const struct aa_scene *s, 
 	return rc;
 }
 
+/* One aa_material_gpu per material at material_stride bytes, bound per draw as a uniform buffer at the
+ * material's dynamic offset (the stride keeps every offset at the device's alignment). */
 static int upload_materials(struct aa_scene_upload *r, const struct aa_scene *s, struct aa_error *err)
 {
 	int n = s->material_count > 0 ? s->material_count : 1;
-	struct aa_material_gpu *g = calloc((size_t)n, sizeof *g);
-	if (!g)
+	VkDeviceSize align = r->gpu->properties.limits.minUniformBufferOffsetAlignment;
+	if (align < 1)
+		align = 1;
+	r->material_stride = (sizeof(struct aa_material_gpu) + align - 1) / align * align;
+	uint8_t *bytes = calloc((size_t)n, (size_t)r->material_stride);
+	if (!bytes)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	for (int i = 0; i < s->material_count; i++) {
 		const struct aa_material *m = &s->materials[i];
-		memcpy(g[i].base_color, m->base_color, sizeof g[i].base_color);
-		memcpy(g[i].color2, m->color2, 3 * sizeof(float));
-		g[i].color2[3] = (float)m->pattern;
-		g[i].pattern[0] = m->scale[0];
-		g[i].pattern[1] = m->scale[1];
-		g[i].pattern[2] = m->stripe_width;
-		g[i].shading[0] = m->specular;
-		g[i].shading[1] = m->roughness;
-		g[i].shading[2] = m->alpha_cutoff;
-		g[i].shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0));
+		struct aa_material_gpu *g = (struct aa_material_gpu *)(bytes + (size_t)i * r->material_stride);
+		memcpy(g->base_color, m->base_color, sizeof g->base_color);
+		memcpy(g->color2, m->color2, 3 * sizeof(float));
+		g->color2[3] = (float)m->pattern;
+		g->pattern[0] = m->scale[0];
+		g->pattern[1] = m->scale[1];
+		g->pattern[2] = m->stripe_width;
+		g->shading[0] = m->specular;
+		g->shading[1] = m->roughness;
+		g->shading[2] = m->alpha_cutoff;
+		g->shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0));
 	}
-	int rc = aa_gpu_buffer_upload(r->gpu, &r->materials, g, (VkDeviceSize)n * sizeof *g,
-				      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, err);
-	free(g);
+	int rc = aa_gpu_buffer_upload(r->gpu, &r->materials, bytes, (VkDeviceSize)n * r->material_stride,
+				      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, err);
+	free(bytes);
 	return rc;
 }
 

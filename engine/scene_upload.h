@@ -10,6 +10,7 @@ struct aa_scene_upload {
 	uint64_t scene_uid;              /* aa_scene.uid of the scene this holds */
 	struct aa_gpu *gpu;
 	struct aa_gpu_buffer vertices, indices, materials;
+	VkDeviceSize material_stride;    /* bytes from one material to the next (a dynamic offset's alignment) */
 	struct aa_gpu_image *textures;   /* scene->texture_count, plus white at [texture_count] */
 	int texture_count;
 	uint32_t *mesh_first_index, *mesh_vertex_offset;

@@ -34,8 +34,12 @@ struct Material {
 	vec4 shading;         // x: specular, y: roughness, z: alpha cutoff, w: flags
 };
 
-layout(std430, set = 0, binding = 1) readonly buffer Materials {
-	Material materials[];
+// The drawn object's material: the scene's materials are one buffer, bound per draw at the material's
+// dynamic offset, so every field is read at a constant offset. llvmpipe then loads it once per draw; an
+// array indexed by draw.material was gathered per fragment and lane, two thirds of the scene pass
+// (docs/architecture.md, "The scene pass").
+layout(std140, set = 0, binding = 1) uniform DrawMaterial {
+	Material material;
 };
 
 layout(set = 0, binding = 2) uniform sampler2D material_texture;
@@ -49,7 +53,7 @@ layout(std430, set = 0, binding = 4) readonly buffer PreviousModels {
 layout(push_constant) uniform Draw {
 	mat4 model;
 	vec4 normal_matrix[3];  // inverse-transpose of model's upper 3x3, as columns
-	uint material;
+	uint material;          // index into the scene's materials (the bound `material` is this one)
 	uint object_id;
 	vec2 jitter_ndc;        // sub-pixel jitter added after projection (clip.xy += jitter * clip.w)
 } draw;

@@ -18,7 +18,7 @@ layout(location = 1) out vec2 out_edge_offset;
 
 void main()
 {
-	Material m = materials[draw.material];
+	Material m = material;
 	vec4 base = surface_color(m, in_uv);
 	if (ALPHA_TEST && base.a < m.shading.z)
 		discard;

@@ -42,7 +42,7 @@ void main()
 			prev_clip = at_shading_point(in_prev_clip, sp.offset);
 		}
 	}
-	Material m = materials[draw.material];
+	Material m = material;
 	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
 	if (ALPHA_TEST) {
 		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)

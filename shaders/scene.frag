@@ -28,7 +28,7 @@ void main()
 		uv = at_shading_point(in_uv, sp.offset);
 		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
 	}
-	Material m = materials[draw.material];
+	Material m = material;
 	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
 	gl_SampleMask[0] = -1; // always written: an output left unwritten would be undefined
 	if (ALPHA_TEST) {

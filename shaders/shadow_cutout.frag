@@ -7,7 +7,7 @@ layout(location = 0) in vec2 in_uv;
 
 void main()
 {
-	Material m = materials[draw.material];
+	Material m = material;
 	float a = m.base_color.a;
 	// explicit gradients: see surface_color_grad in shading.glsl (helper lanes read the material as zero)
 	vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);

@@ -161,6 +161,9 @@ void aa_gpu_write_image(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t bindin
 			VkImageLayout layout);
 void aa_gpu_write_buffer(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
 			 const struct aa_gpu_buffer *buf);
+/* The first `range` bytes of buf: a dynamic uniform buffer, moved over buf by the offset given at bind. */
+void aa_gpu_write_buffer_range(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+			       const struct aa_gpu_buffer *buf, VkDeviceSize range);
 
 /* Timestamps around passes. Start stamps are written at BOTTOM_OF_PIPE followed by an execution barrier,
  * because lavapipe only flushes queued work before non-TOP_OF_PIPE stamps (lavapipe-costs.md, trap 1). */

@@ -211,13 +211,14 @@ int aa_gpu_descriptor_pool_create(struct aa_gpu *gpu, uint32_t max_sets, VkDescr
 	VkDescriptorPoolSize sizes[] = {
 		{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, max_sets * 24},
 		{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, max_sets * 2},
+		{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, max_sets},
 		{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, max_sets * 4},
 		{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, max_sets * 4},
 	};
 	VkDescriptorPoolCreateInfo ci = {
 		.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
 		.maxSets = max_sets,
-		.poolSizeCount = 4,
+		.poolSizeCount = 5,
 		.pPoolSizes = sizes,
 	};
 	if (vkCreateDescriptorPool(gpu->device, &ci, NULL, out) != VK_SUCCESS)
@@ -259,7 +260,13 @@ void aa_gpu_write_image(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t bindin
 void aa_gpu_write_buffer(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
 			 const struct aa_gpu_buffer *buf)
 {
-	VkDescriptorBufferInfo bi = {buf->buffer, 0, VK_WHOLE_SIZE};
+	aa_gpu_write_buffer_range(gpu, set, binding, type, buf, VK_WHOLE_SIZE);
+}
+
+void aa_gpu_write_buffer_range(struct aa_gpu *gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+			       const struct aa_gpu_buffer *buf, VkDeviceSize range)
+{
+	VkDescriptorBufferInfo bi = {buf->buffer, 0, range};
 	VkWriteDescriptorSet w = {
 		.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
 		.dstSet = set,

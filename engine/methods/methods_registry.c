@@ -8,6 +8,7 @@ extern const struct aa_method aa_method_ssaa;
 extern const struct aa_method aa_method_msaa;
 extern const struct aa_method aa_method_gbaa;
 extern const struct aa_method aa_method_copy;
+extern const struct aa_method aa_method_floor;
 extern const struct aa_method aa_method_taa;
 extern const struct aa_method aa_method_taa_sobel;
 extern const struct aa_method aa_method_smaa;
@@ -25,6 +26,7 @@ const struct aa_method *const aa_methods[] = {
 	&aa_method_taa,
 	&aa_method_taa_sobel,
 	&aa_method_copy,
+	&aa_method_floor,
 	&aa_method_smaa,
 	&aa_method_fxaa,
 	&aa_method_fxaa_cs,
