@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "../gpu/sample_positions.h"
+#include "../reference/sample_accumulator.h"
 #include "../renderer.h"
 #include "method.h"
 
@@ -30,15 +31,13 @@ struct aa_method_state {
 	struct aa_renderer *r;
 	int samples;
 	bool hardware;
-	struct aa_scene_target target;
-	struct aa_gpu_image accum;       /* virtual path: RGBA32F average of the sample images */
-	struct aa_fullscreen_pass accumulate;
+	struct aa_scene_target target;      /* hardware path */
+	struct aa_sample_accumulator average; /* virtual path: RGBA32F average of the sample images */
 };
 
 static void msaa_destroy(struct aa_method_state *s)
 {
-	aa_fullscreen_pass_destroy(s->r, &s->accumulate);
-	aa_gpu_image_destroy(s->r->gpu, &s->accum);
+	aa_sample_accumulator_destroy(&s->average);
 	aa_scene_target_destroy(s->r, &s->target);
 	free(s);
 }
@@ -72,14 +71,9 @@ static int msaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 			 "virtual samples: %d rasterisations, shading once per pixel", s->samples);
 		struct aa_scene_target_desc d = {.samples = 1, .virtual_samples = (uint32_t)s->samples,
 						 .alpha_to_coverage = alpha_to_coverage};
-		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "sample", info, err) ||
-		     aa_renderer_image_create(r, &s->accum, r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
-					      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-					      VK_IMAGE_USAGE_TRANSFER_DST_BIT, "sample average (RGBA32F)", info,
-					      err) ||
-		     aa_fullscreen_pass_create(r, &s->accumulate, &(struct aa_fullscreen_desc){
-				.frag = "accumulate.frag", .source_count = 1, .sources = {s->target.output},
-				.target = &s->accum, .accumulate = true, .push_size = sizeof(float)}, err);
+		/* the sample images go in batches into one summing pass each (sample_accumulator.h) */
+		rc = aa_sample_accumulator_create(r, &d, s->samples, 1.0f / (float)s->samples, "sample", info,
+						  &s->average, err);
 	}
 	if (rc) {
 		msaa_destroy(s);
@@ -100,18 +94,12 @@ static int msaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, stru
 	}
 	const float (*pos)[2] = aa_standard_sample_positions(s->samples);
 	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "scene-virtual-samples");
-	aa_gpu_image_barrier(ctx->cmd, &s->accum, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-	VkClearColorValue zero = {.float32 = {0, 0, 0, 0}};
-	VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-	vkCmdClearColorImage(ctx->cmd, s->accum.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
-	float weight = 1.0f / (float)s->samples;
-	for (int i = 0; i < s->samples; i++) {
+	aa_sample_accumulator_clear(&s->average, ctx->cmd);
+	for (int i = 0; i < s->samples; i++)
 		/* moving the geometry by -(position - centre) puts sample i's point on the pixel centre */
-		aa_renderer_draw_scene(s->r, ctx->cmd, &s->target, 0.5f - pos[i][0], 0.5f - pos[i][1]);
-		aa_fullscreen_pass_record(s->r, ctx->cmd, &s->accumulate, &weight, sizeof weight);
-	}
+		aa_sample_accumulator_render(&s->average, ctx->cmd, 0.5f - pos[i][0], 0.5f - pos[i][1]);
+	ctx->output = aa_sample_accumulator_sum(&s->average, ctx->cmd);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	ctx->output = &s->accum;
 	return 0;
 }
 

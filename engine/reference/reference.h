@@ -5,14 +5,13 @@
 
 #include "../image/image.h"
 #include "../renderer.h"
+#include "sample_accumulator.h"
 
 struct aa_reference {
 	struct aa_renderer *r;
 	int samples;
-	struct aa_scene_target target;
-	struct aa_gpu_image accum;     /* RGBA32F sum of the renders */
-	struct aa_fullscreen_pass accumulate;
-	struct aa_gpu_buffer readback;
+	struct aa_sample_accumulator sum; /* RGBA32F sum of the renders, a batch per summing pass */
+	struct aa_gpu_buffer readback, readback_half; /* the sums of N and of the first N/2 renders */
 	float (*offsets)[2];           /* per sample, in pixels, within [-0.5, 0.5) */
 	uint64_t memory_bytes;
 };
@@ -25,7 +24,8 @@ void aa_reference_offsets(int n, float (*out)[2]);
 int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference *ref, struct aa_error *err);
 void aa_reference_destroy(struct aa_reference *ref);
 /* Renders the current frame (aa_renderer_set_frame done) into full (N samples) and half (first N/2
- * samples), both linear float. gpu_ms: all renders and accumulation; cpu_ms: wall time. */
+ * samples), both linear float, in one submission. gpu_ms: all renders and accumulation; cpu_ms: wall
+ * time. */
 int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, struct aa_image_rgbaf *full,
 			struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms, struct aa_error *err);
 
