@@ -1,4 +1,5 @@
-/* CPU images and file I/O. Files go through OpenImageIO behind a C interface (image_io.cc). */
+/* CPU images and file I/O. PNG goes through libpng (png_io.c); other formats through OpenImageIO in a
+ * module loaded only when one is met (image_files.c, image_io.cc). */
 #ifndef AA_IMAGE_H
 #define AA_IMAGE_H
 
@@ -39,7 +40,7 @@ int aa_image_write_png(const char *path, const struct aa_image_rgba8 *img, struc
 /* Encodes a PNG into memory (for streaming); *data is malloc'ed. */
 int aa_image_encode_png(const struct aa_image_rgba8 *img, uint8_t **data, size_t *size, struct aa_error *err);
 
-/* Reads any format OpenImageIO knows. 1 channel -> grey, 2 -> grey+alpha, 3 -> RGB, 4 -> RGBA;
+/* Reads PNG, or any format OpenImageIO knows. 1 channel -> grey, 2 -> grey+alpha, 3 -> RGB, 4 -> RGBA;
  * other layouts are refused with AA_ERR_INVALID. read_rgba8 returns the file's stored values
  * (sRGB for PNG/JPEG); read_rgbaf returns float values as stored (linear for EXR/HDR; for 8-bit files
  * the stored value/255, not linearised). */

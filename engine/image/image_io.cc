@@ -1,8 +1,10 @@
-// Image files through OpenImageIO, behind the C interface declared in image.h (the only C++ in aalab).
-#include <OpenImageIO/filesystem.h>
+// aalab-oiio.so: image files through OpenImageIO, behind the C interface of oiio_module.h (the only C++ in
+// aalab). Loaded by image_files.c only for files that are not PNG.
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
+#include <cstdarg>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -12,7 +14,7 @@
 #include <sys/stat.h>
 
 extern "C" {
-#include "image.h"
+#include "oiio_module.h"
 }
 
 using OIIO::ImageInput;
@@ -24,6 +26,21 @@ namespace {
 
 // The same bound as image.c, so a hostile header cannot ask for a huge allocation.
 constexpr int max_side = 32768;
+
+// aa_error_set (error.c) for the module, which links nothing of aalab.
+__attribute__((format(printf, 3, 4))) int set_error(struct aa_error *err, enum aa_error_code code,
+							 const char *fmt, ...)
+{
+	if (err) {
+		err->code = code;
+		err->path[0] = '\0';
+		va_list ap;
+		va_start(ap, fmt);
+		vsnprintf(err->message, sizeof err->message, fmt, ap);
+		va_end(ap);
+	}
+	return -1;
+}
 
 // OIIO keeps the last error per thread; fetch it (and clear it) so messages do not leak into later calls.
 std::string oiio_message(const std::string &from_object)
@@ -38,9 +55,9 @@ int open_error(const char *path, struct aa_error *err)
 {
 	struct stat st;
 	if (stat(path, &st) != 0 && errno == ENOENT)
-		return aa_error_set(err, AA_ERR_NOT_FOUND, "", "image file '%s' does not exist", path);
+		return set_error(err, AA_ERR_NOT_FOUND, "image file '%s' does not exist", path);
 	std::string msg = oiio_message("");
-	return aa_error_set(err, AA_ERR_IO, "", "cannot read image '%s': %s", path, msg.c_str());
+	return set_error(err, AA_ERR_IO, "cannot read image '%s': %s", path, msg.c_str());
 }
 
 // Opens a file and checks that its first subimage is a flat 2D image with 1 to 4 channels.
@@ -54,81 +71,16 @@ int open_input(const char *path, std::unique_ptr<ImageInput> &in, struct aa_erro
 		return open_error(path, err);
 	const ImageSpec &spec = in->spec();
 	if (spec.nchannels < 1 || spec.nchannels > 4)
-		return aa_error_set(err, AA_ERR_INVALID, "",
+		return set_error(err, AA_ERR_INVALID,
 				    "image '%s' has %d channels; only grey, grey+alpha, RGB and RGBA are supported",
 				    path, spec.nchannels);
 	if (spec.depth > 1 || spec.deep)
-		return aa_error_set(err, AA_ERR_INVALID, "", "image '%s' is a volume or deep image", path);
+		return set_error(err, AA_ERR_INVALID, "image '%s' is a volume or deep image", path);
 	if (spec.width < 1 || spec.height < 1 || spec.width > max_side || spec.height > max_side)
-		return aa_error_set(err, AA_ERR_INVALID, "",
+		return set_error(err, AA_ERR_INVALID,
 				    "image '%s' is %dx%d; sides must be 1..%d pixels", path, spec.width,
 				    spec.height, max_side);
 	return 0;
-}
-
-// Reads all channels of subimage 0 as `format` into a tightly packed buffer of nchannels per pixel.
-template <typename T>
-int read_channels(const char *path, ImageInput &in, TypeDesc format, std::vector<T> &data,
-		  struct aa_error *err)
-{
-	const ImageSpec &spec = in.spec();
-	data.resize((size_t)spec.width * spec.height * spec.nchannels);
-	if (!in.read_image(0, 0, 0, spec.nchannels, format, data.data())) {
-		std::string msg = oiio_message(in.geterror());
-		return aa_error_set(err, AA_ERR_IO, "", "cannot read pixels of '%s': %s", path, msg.c_str());
-	}
-	return 0;
-}
-
-// Expands 1..4 stored channels to RGBA: grey fills R,G,B; a missing alpha becomes opaque.
-template <typename T>
-void expand_to_rgba(const T *src, int nchannels, size_t pixels, T opaque, T *dst)
-{
-	for (size_t p = 0; p < pixels; p++, src += nchannels, dst += 4) {
-		bool grey = nchannels <= 2;
-		dst[0] = src[0];
-		dst[1] = grey ? src[0] : src[1];
-		dst[2] = grey ? src[0] : src[2];
-		if (nchannels == 2)
-			dst[3] = src[1];
-		else if (nchannels == 4)
-			dst[3] = src[3];
-		else
-			dst[3] = opaque;
-	}
-}
-
-bool has_transparency(const struct aa_image_rgba8 *img)
-{
-	size_t n = (size_t)img->width * img->height;
-	for (size_t p = 0; p < n; p++)
-		if (img->pixels[4 * p + 3] != 255)
-			return true;
-	return false;
-}
-
-// Writes img as PNG to an already created output; RGB when fully opaque, which makes files smaller.
-bool write_png_pixels(ImageOutput &out, const char *name, const struct aa_image_rgba8 *img,
-		      std::string &error)
-{
-	int channels = has_transparency(img) ? 4 : 3;
-	ImageSpec spec(img->width, img->height, channels, TypeDesc::UINT8);
-	spec.attribute("oiio:ColorSpace", "sRGB");
-	// Our pixels hold straight alpha, as PNG does; otherwise OIIO would divide the colours by alpha.
-	spec.attribute("oiio:UnassociatedAlpha", 1);
-	if (!out.open(name, spec)) {
-		error = oiio_message(out.geterror());
-		return false;
-	}
-	// A 4-byte pixel stride lets OIIO drop the alpha byte without a copy.
-	bool ok = out.write_image(TypeDesc::UINT8, img->pixels, 4, (OIIO::stride_t)img->width * 4);
-	if (!ok)
-		error = oiio_message(out.geterror());
-	if (!out.close() && ok) {
-		error = oiio_message(out.geterror());
-		ok = false;
-	}
-	return ok;
 }
 
 bool valid_image(int width, int height, const void *pixels)
@@ -136,110 +88,55 @@ bool valid_image(int width, int height, const void *pixels)
 	return pixels && width > 0 && height > 0 && width <= max_side && height <= max_side;
 }
 
-} // namespace
-
-extern "C" int aa_image_read_rgba8(const char *path, struct aa_image_rgba8 *out, struct aa_error *err)
+// Reads subimage 0 with all its channels, as uint8 or float.
+int module_read(const char *path, int as_float, struct aa_file_pixels *out, struct aa_error *err)
 {
-	out->width = out->height = 0;
-	out->pixels = nullptr;
+	*out = aa_file_pixels{};
 	std::unique_ptr<ImageInput> in;
 	if (open_input(path, in, err) != 0)
 		return -1;
 	const ImageSpec spec = in->spec();
-	std::vector<uint8_t> data;
-	if (read_channels(path, *in, TypeDesc::UINT8, data, err) != 0)
-		return -1;
-	if (aa_image_rgba8_alloc(out, spec.width, spec.height) != 0)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for image '%s' (%dx%d)", path,
-				    spec.width, spec.height);
-	expand_to_rgba<uint8_t>(data.data(), spec.nchannels, (size_t)spec.width * spec.height, 255,
-				out->pixels);
+	size_t values = (size_t)spec.width * spec.height * spec.nchannels;
+	void *data = malloc(values * (as_float ? sizeof(float) : 1));
+	if (!data)
+		return set_error(err, AA_ERR_LIMIT, "out of memory for image '%s' (%dx%d)", path, spec.width,
+				    spec.height);
+	if (!in->read_image(0, 0, 0, spec.nchannels, as_float ? TypeDesc::FLOAT : TypeDesc::UINT8, data)) {
+		free(data);
+		std::string msg = oiio_message(in->geterror());
+		return set_error(err, AA_ERR_IO, "cannot read pixels of '%s': %s", path, msg.c_str());
+	}
+	*out = aa_file_pixels{spec.width, spec.height, spec.nchannels, data};
 	return 0;
 }
 
-extern "C" int aa_image_read_rgbaf(const char *path, struct aa_image_rgbaf *out, int *channels_in_file,
-				   struct aa_error *err)
+int module_write_rgbaf(const char *path, int width, int height, const float *rgba, struct aa_error *err)
 {
-	out->width = out->height = 0;
-	out->pixels = nullptr;
-	std::unique_ptr<ImageInput> in;
-	if (open_input(path, in, err) != 0)
-		return -1;
-	const ImageSpec spec = in->spec();
-	std::vector<float> data;
-	if (read_channels(path, *in, TypeDesc::FLOAT, data, err) != 0)
-		return -1;
-	if (aa_image_rgbaf_alloc(out, spec.width, spec.height) != 0)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for image '%s' (%dx%d)", path,
-				    spec.width, spec.height);
-	expand_to_rgba<float>(data.data(), spec.nchannels, (size_t)spec.width * spec.height, 1.0f,
-			      out->pixels);
-	if (channels_in_file)
-		*channels_in_file = spec.nchannels;
-	return 0;
-}
-
-extern "C" int aa_image_write_png(const char *path, const struct aa_image_rgba8 *img, struct aa_error *err)
-{
-	if (!valid_image(img->width, img->height, img->pixels))
-		return aa_error_set(err, AA_ERR_INVALID, "", "cannot write '%s': empty image", path);
-	auto out = ImageOutput::create("png");
-	if (!out)
-		return aa_error_set(err, AA_ERR_IO, "", "cannot write '%s': %s", path,
-				    oiio_message("").c_str());
-	std::string error;
-	if (!write_png_pixels(*out, path, img, error))
-		return aa_error_set(err, AA_ERR_IO, "", "cannot write PNG '%s': %s", path, error.c_str());
-	return 0;
-}
-
-extern "C" int aa_image_encode_png(const struct aa_image_rgba8 *img, uint8_t **data, size_t *size,
-				   struct aa_error *err)
-{
-	*data = nullptr;
-	*size = 0;
-	if (!valid_image(img->width, img->height, img->pixels))
-		return aa_error_set(err, AA_ERR_INVALID, "", "cannot encode an empty image as PNG");
-	std::vector<unsigned char> bytes;
-	OIIO::Filesystem::IOVecOutput proxy(bytes);
-	auto out = ImageOutput::create("png", &proxy);
-	if (!out || !out->supports("ioproxy"))
-		return aa_error_set(err, AA_ERR_INTERNAL, "",
-				    "this OpenImageIO cannot encode PNG to memory: %s", oiio_message("").c_str());
-	std::string error;
-	if (!write_png_pixels(*out, "memory.png", img, error))
-		return aa_error_set(err, AA_ERR_IO, "", "cannot encode PNG: %s", error.c_str());
-	out.reset();
-	*data = static_cast<uint8_t *>(malloc(bytes.size() ? bytes.size() : 1));
-	if (!*data)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a %zu-byte PNG", bytes.size());
-	if (!bytes.empty())
-		memcpy(*data, bytes.data(), bytes.size());
-	*size = bytes.size();
-	return 0;
-}
-
-extern "C" int aa_image_write_rgbaf(const char *path, const struct aa_image_rgbaf *img, struct aa_error *err)
-{
-	if (!valid_image(img->width, img->height, img->pixels))
-		return aa_error_set(err, AA_ERR_INVALID, "", "cannot write '%s': empty image", path);
+	if (!valid_image(width, height, rgba))
+		return set_error(err, AA_ERR_INVALID, "cannot write '%s': empty image", path);
 	auto out = ImageOutput::create(path);
 	if (!out)
-		return aa_error_set(err, AA_ERR_IO, "", "cannot write '%s': %s", path,
-				    oiio_message("").c_str());
+		return set_error(err, AA_ERR_IO, "cannot write '%s': %s", path, oiio_message("").c_str());
 	// Formats without float pixels (PNG, JPEG) are converted by OIIO, clamped to [0,1].
-	ImageSpec spec(img->width, img->height, 4, TypeDesc::FLOAT);
+	ImageSpec spec(width, height, 4, TypeDesc::FLOAT);
 	spec.attribute("oiio:ColorSpace", "Linear");
 	if (!out->open(path, spec))
-		return aa_error_set(err, AA_ERR_IO, "", "cannot write '%s': %s", path,
+		return set_error(err, AA_ERR_IO, "cannot write '%s': %s", path,
 				    oiio_message(out->geterror()).c_str());
-	bool ok = out->write_image(TypeDesc::FLOAT, img->pixels);
+	bool ok = out->write_image(TypeDesc::FLOAT, rgba);
 	std::string error = ok ? "" : oiio_message(out->geterror());
 	if (!out->close() && ok) {
 		error = oiio_message(out->geterror());
 		ok = false;
 	}
 	if (!ok)
-		return aa_error_set(err, AA_ERR_IO, "", "cannot write '%s': %s", path, error.c_str());
+		return set_error(err, AA_ERR_IO, "cannot write '%s': %s", path, error.c_str());
 	return 0;
+}
+
+} // namespace
+
+extern "C" {
+extern const struct aa_oiio_module aa_oiio_module;
+const struct aa_oiio_module aa_oiio_module = {AA_OIIO_MODULE_VERSION, module_read, module_write_rgbaf};
 }
