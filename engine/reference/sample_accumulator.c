@@ -24,6 +24,14 @@ int aa_sample_accumulator_create(struct aa_renderer *r, const struct aa_scene_ta
 			return -1;
 		acc->memory_bytes += acc->sums[i].bytes;
 	}
+	/* A partial batch leaves some bound targets unrendered: give them a readable layout from the start. */
+	VkCommandBuffer cmd;
+	if (aa_gpu_begin(r->gpu, &cmd, err))
+		return -1;
+	for (int i = 0; i < acc->batch; i++)
+		aa_gpu_image_barrier(cmd, acc->targets[i].output, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	if (aa_gpu_submit_wait(r->gpu, cmd, err))
+		return -1;
 	int32_t batch_constant = acc->batch;
 	VkSpecializationMapEntry entry = {0, 0, sizeof batch_constant};
 	VkSpecializationInfo spec = {1, &entry, sizeof batch_constant, &batch_constant};
