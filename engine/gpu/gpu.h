@@ -96,6 +96,8 @@ struct aa_gpu_pass_desc {
 	bool color_load[AA_GPU_MAX_COLOR]; /* keep existing contents instead of clearing */
 	VkFormat depth_format;   /* VK_FORMAT_UNDEFINED: none */
 	bool depth_readable;
+	bool depth_load, depth_store; /* keep the depth from an earlier pass / for a later pass (attachment
+				       * layout throughout; depth_readable ends in the sampled layout) */
 	uint32_t samples;
 	bool resolve;
 };

@@ -35,7 +35,8 @@ uint32_t aa_gpu_format_bytes(VkFormat format)
 	switch (format) {
 	case VK_FORMAT_R8_UNORM: return 1;
 	case VK_FORMAT_R8G8_UNORM: return 2;
-	case VK_FORMAT_R16_SFLOAT: return 2;
+	case VK_FORMAT_R16_SFLOAT:
+	case VK_FORMAT_D16_UNORM: return 2;
 	case VK_FORMAT_R8G8B8A8_UNORM:
 	case VK_FORMAT_R8G8B8A8_SRGB:
 	case VK_FORMAT_B8G8R8A8_UNORM:
@@ -54,7 +55,7 @@ int aa_gpu_image_create(struct aa_gpu *gpu, struct aa_gpu_image *img, int width,
 			VkImageUsageFlags usage, uint32_t samples, uint32_t mip_levels, struct aa_error *err)
 {
 	memset(img, 0, sizeof *img);
-	bool depth = format == VK_FORMAT_D32_SFLOAT;
+	bool depth = format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM;
 	img->format = format;
 	img->aspect = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 	img->width = width;
@@ -342,11 +343,13 @@ int aa_gpu_render_pass_create(struct aa_gpu *gpu, const struct aa_gpu_pass_desc 
 		att[n] = (VkAttachmentDescription){
 			.format = desc->depth_format,
 			.samples = samples,
-			.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-			.storeOp = desc->depth_readable ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
+			.loadOp = desc->depth_load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR,
+			.storeOp = desc->depth_readable || desc->depth_store ? VK_ATTACHMENT_STORE_OP_STORE
+									     : VK_ATTACHMENT_STORE_OP_DONT_CARE,
 			.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
 			.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
-			.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+			.initialLayout = desc->depth_load ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+							  : VK_IMAGE_LAYOUT_UNDEFINED,
 			.finalLayout = desc->depth_readable ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
 							    : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
 		};

@@ -95,23 +95,80 @@ void aa_fxaa_describe(const struct aa_method_params *p, char *out, size_t size)
 	snprintf(out, size, "preset %d, %d search steps", presets[k].preset, presets[k].count);
 }
 
+/* The edge mask's depth format: two values (0 edge, 1 not), the smallest depth format there is. */
+#define EDGE_MASK_FORMAT VK_FORMAT_D16_UNORM
+
+/* A pass of our own (not aa_fullscreen_pass): the edge mask needs a depth attachment. */
+struct fxaa_pass {
+	struct aa_gpu_pipeline pipeline;
+	VkRenderPass render_pass;
+	VkFramebuffer framebuffer;
+	VkDescriptorSet set;
+};
+
 struct aa_method_state {
 	struct aa_renderer *r;
-	struct aa_scene_target target;
-	struct aa_gpu_image luma, output;
-	struct aa_fullscreen_pass luma_pass, fxaa_pass;
+	struct aa_scene_target target;   /* the scene; FXAA's output too: edge pixels are drawn into it */
+	struct aa_gpu_image luma, edge_mask;
+	struct aa_fullscreen_pass luma_pass;
+	struct fxaa_pass edges, resolve;
 	struct aa_fxaa_spec spec;
 	struct aa_fxaa_push push;
 };
 
+static void fxaa_pass_destroy(struct aa_renderer *r, struct fxaa_pass *p)
+{
+	if (p->framebuffer)
+		vkDestroyFramebuffer(r->gpu->device, p->framebuffer, NULL);
+	if (p->render_pass)
+		vkDestroyRenderPass(r->gpu->device, p->render_pass, NULL);
+	aa_gpu_pipeline_destroy(r->gpu, &p->pipeline);
+}
+
 static void fxaa_destroy(struct aa_method_state *s)
 {
-	aa_fullscreen_pass_destroy(s->r, &s->fxaa_pass);
+	fxaa_pass_destroy(s->r, &s->resolve);
+	fxaa_pass_destroy(s->r, &s->edges);
 	aa_fullscreen_pass_destroy(s->r, &s->luma_pass);
-	aa_gpu_image_destroy(s->r->gpu, &s->output);
+	aa_gpu_image_destroy(s->r->gpu, &s->edge_mask);
 	aa_gpu_image_destroy(s->r->gpu, &s->luma);
 	aa_scene_target_destroy(s->r, &s->target);
 	free(s);
+}
+
+/* A full-screen pass over the luma texture into `colour` (or none) and the edge mask. */
+static int fxaa_pass_create(struct aa_method_state *s, struct fxaa_pass *p, const char *frag,
+			    struct aa_gpu_image *colour, bool resolve, struct aa_error *err)
+{
+	struct aa_renderer *r = s->r;
+	struct aa_gpu_pass_desc pd = {
+		.color_count = colour ? 1 : 0, .color_formats = {colour ? colour->format : VK_FORMAT_UNDEFINED},
+		.color_load = {true}, .depth_format = EDGE_MASK_FORMAT, .samples = 1,
+		.depth_load = resolve, .depth_store = !resolve,
+	};
+	VkDescriptorType types[1] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+	struct aa_gpu_image *att[2];
+	int n = 0;
+	if (colour)
+		att[n++] = colour;
+	att[n++] = &s->edge_mask;
+	if (aa_gpu_render_pass_create(r->gpu, &pd, &p->render_pass, err) ||
+	    aa_gpu_layout_create(r->gpu, types, NULL, 1, sizeof s->push, &p->pipeline, err))
+		return -1;
+	struct aa_gpu_graphics_desc g = {
+		.vert = "fullscreen.vert", .frag = frag, .vertex_layout = AA_VERTEX_NONE,
+		.render_pass = p->render_pass, .color_count = pd.color_count, .samples = 1,
+		.cull = VK_CULL_MODE_NONE, .depth_test = true, .depth_write = !resolve,
+		.layout = p->pipeline.layout, .frag_specialization = resolve ? &s->spec.info : NULL,
+	};
+	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
+	    aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &p->pipeline, &p->set, err) ||
+	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, n, &p->framebuffer, err))
+		return -1;
+	aa_gpu_write_image(r->gpu, p->set, 0, 0, types[0], resolve ? r->gpu->sampler_linear_clamp
+								    : r->gpu->sampler_nearest,
+			   &s->luma, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	return 0;
 }
 
 static int fxaa_create(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
@@ -125,25 +182,35 @@ static int fxaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	aa_fxaa_push_init(&s->push, p);
 	char desc[40];
 	aa_fxaa_describe(p, desc, sizeof desc);
-	snprintf(info->path_taken, sizeof info->path_taken, "pixel shader, %s", desc);
+	snprintf(info->path_taken, sizeof info->path_taken, "pixel shader on edge pixels (depth mask), %s", desc);
 	const VkImageUsageFlags pass_target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 	if (aa_scene_target_create(r, &s->target, r->width, r->height, "scene", info, err) ||
 	    aa_renderer_image_create(r, &s->luma, r->width, r->height, VK_FORMAT_R8G8B8A8_UNORM, pass_target,
 				     "sRGB colour + luma", info, err) ||
-	    aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT,
-				     pass_target | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "fxaa output", info, err) ||
+	    aa_renderer_image_create(r, &s->edge_mask, r->width, r->height, EDGE_MASK_FORMAT,
+				     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "edge mask (depth)", info, err) ||
 	    aa_fullscreen_pass_create(r, &s->luma_pass, &(struct aa_fullscreen_desc){
 			.frag = "fxaa_luma.frag", .source_count = 1, .sources = {&s->target.color},
 			.target = &s->luma}, err) ||
-	    aa_fullscreen_pass_create(r, &s->fxaa_pass, &(struct aa_fullscreen_desc){
-			.frag = "fxaa.frag", .source_count = 2, .sources = {&s->luma, &s->target.color},
-			.linear = {true, false}, .target = &s->output, .push_size = sizeof s->push,
-			.specialization = &s->spec.info}, err)) {
+	    fxaa_pass_create(s, &s->edges, "fxaa_edges.frag", NULL, false, err) ||
+	    fxaa_pass_create(s, &s->resolve, "fxaa.frag", &s->target.color, true, err)) {
 		fxaa_destroy(s);
 		return -1;
 	}
 	*out = s;
 	return 0;
+}
+
+static void fxaa_pass_record(struct aa_method_state *s, VkCommandBuffer cmd, struct fxaa_pass *p)
+{
+	VkClearValue clear[2] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.depthStencil = {0.0f, 0}}};
+	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, s->r->width, s->r->height,
+			  p == &s->edges ? &clear[1] : clear, p == &s->edges ? 1 : 2);
+	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
+	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
+	vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, sizeof s->push, &s->push);
+	vkCmdDraw(cmd, 3, 1, 0, 0);
+	vkCmdEndRenderPass(cmd);
 }
 
 static int fxaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err)
@@ -154,10 +221,15 @@ static int fxaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, stru
 	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "fxaa-luma");
 	aa_fullscreen_pass_record(s->r, ctx->cmd, &s->luma_pass, NULL, 0);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "fxaa");
-	aa_fullscreen_pass_record(s->r, ctx->cmd, &s->fxaa_pass, &s->push, sizeof s->push);
+	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "fxaa-edges");
+	fxaa_pass_record(s, ctx->cmd, &s->edges);
+	s->edge_mask.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	ctx->output = &s->output;
+	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "fxaa");
+	aa_gpu_image_barrier(ctx->cmd, &s->target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+	fxaa_pass_record(s, ctx->cmd, &s->resolve);
+	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	ctx->output = &s->target.color;
 	return 0;
 }
 

@@ -2,7 +2,7 @@
 libaaengine_a_SOURCES += engine/methods/fxaa.h engine/methods/fxaa.c engine/methods/fxaa_cs.c \
 	engine/passes/compute_pass.h engine/passes/compute_pass.c
 
-fxaa_glsl = shaders/fxaa_luma.frag shaders/fxaa.frag \
+fxaa_glsl = shaders/fxaa_luma.frag shaders/fxaa_edges.frag shaders/fxaa.frag \
 	shaders/fxaa_cs_luma.comp shaders/fxaa_cs_classify.comp shaders/fxaa_cs_edges.comp
 glsl_files += $(fxaa_glsl)
 EXTRA_DIST += shaders/fxaa_common.glsl shaders/fxaa_cs_queue.glsl
