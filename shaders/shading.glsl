@@ -48,14 +48,16 @@ float shadow_visibility(vec3 world, float ndotl)
 	vec4 p = frame.shadow_view_proj * vec4(world, 1.0);
 	vec3 ndc = p.xyz / p.w;
 	vec2 uv = ndc.xy * 0.5 + 0.5;
-	if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
-		return 1.0;
 	// reversed-Z: the stored depth is the closest occluder (largest); a slope-scaled bias keeps
 	// surfaces from shadowing themselves.
 	float bias = 0.0005 + 0.002 * (1.0 - ndotl);
-	// one mip level, the same filter when magnified or minified: an explicit LOD is the same lookup
-	// without the derivatives and LOD selection an implicit one computes per fragment
-	return textureLod(shadow_map, vec3(uv, ndc.z + bias), 0.0);
+	// One mip level, the same filter when magnified or minified: an explicit LOD is the same lookup
+	// without the derivatives and LOD selection an implicit one computes per fragment. The lookup is
+	// made for every fragment and outside points are selected away after it, not branched around:
+	// llvmpipe samples in divergent control flow far more slowly (docs/architecture.md).
+	float lit = textureLod(shadow_map, vec3(uv, ndc.z + bias), 0.0);
+	bool outside = any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)));
+	return outside ? 1.0 : lit;
 }
 
 // What light i adds to a surface point. i is a constant at every call (shade), so the light is read at
@@ -79,11 +81,9 @@ vec3 light_contribution(int i, vec3 base, vec3 world, vec3 n, vec3 v, float spec
 		}
 	}
 	float ndotl = max(dot(n, l), 0.0);
+	float vis = i == SHADOW_LIGHT ? shadow_visibility(world, ndotl) : 1.0; // before any branch: see there
 	if (ndotl <= 0.0)
 		return vec3(0.0);
-	float vis = 1.0;
-	if (i == SHADOW_LIGHT)
-		vis = shadow_visibility(world, ndotl);
 	vec3 lit = base * ndotl;
 	if (MATERIAL_HAS_SPECULAR) {
 		vec3 h = normalize(l + v);
@@ -93,19 +93,21 @@ vec3 light_contribution(int i, vec3 base, vec3 world, vec3 n, vec3 v, float spec
 	return vis * radiance * lit;
 }
 
+// Stability tests poison a sparse pattern of pixels with NaN and +Inf: nothing downstream may keep them.
+// Applied to the finished colour rather than as an early return, which would put all the shading after
+// it in divergent control flow.
+vec3 poisoned(vec3 color)
+{
+	int k = (int(gl_FragCoord.x) + 3 * int(gl_FragCoord.y)) % 11;
+	vec3 poison = vec3(uintBitsToFloat(k == 0 ? 0x7fc00000u : 0x7f800000u)); // NaN, +Inf
+	return frame.counts.z != 0 && (k == 0 || k == 5) ? poison : color;
+}
+
 // Lit linear colour of a surface point; base is the surface colour (alpha handled by the caller).
 vec3 shade(Material m, vec4 base, vec3 world, vec3 normal, bool front_facing)
 {
-	// Stability tests poison a sparse pattern of pixels with NaN and +Inf: nothing downstream may keep them.
-	if (frame.counts.z != 0) {
-		ivec2 p = ivec2(gl_FragCoord.xy);
-		if ((p.x + 3 * p.y) % 11 == 0)
-			return vec3(uintBitsToFloat(0x7fc00000u)); // NaN
-		if ((p.x + 3 * p.y) % 11 == 5)
-			return vec3(uintBitsToFloat(0x7f800000u)); // +Inf
-	}
 	if (MATERIAL_IS_UNLIT)
-		return base.rgb;
+		return poisoned(base.rgb);
 	vec3 n = normalize(normal);
 	if (!front_facing)
 		n = -n; // two-sided: thin blinds and wires are seen from both sides
@@ -118,5 +120,5 @@ vec3 shade(Material m, vec4 base, vec3 world, vec3 normal, bool front_facing)
 #define ADD_LIGHT(i) if (i < LIGHT_COUNT) color += light_contribution(i, base.rgb, world, n, v, specular, shininess);
 	ADD_LIGHT(0) ADD_LIGHT(1) ADD_LIGHT(2) ADD_LIGHT(3) ADD_LIGHT(4) ADD_LIGHT(5) ADD_LIGHT(6) ADD_LIGHT(7)
 #undef ADD_LIGHT
-	return color;
+	return poisoned(color);
 }
