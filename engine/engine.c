@@ -5,6 +5,7 @@
 
 #include "aa.h"
 #include "engine_internal.h"
+#include "renderer.h"
 
 int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **out, struct aa_error *err)
 {
@@ -29,6 +30,7 @@ void aa_engine_destroy(struct aa_engine *e)
 {
 	if (!e)
 		return;
+	aa_renderer_destroy(e->kept_renderer);
 	for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++)
 		aa_scene_upload_destroy(e->uploads[i]);
 	aa_gpu_destroy(&e->gpu);
@@ -63,6 +65,16 @@ struct aa_upload_stats aa_engine_upload_stats(const struct aa_engine *e)
 	return s;
 }
 
+/* Destroys an uploaded scene, and the kept renderer that draws it. */
+static void upload_destroy(struct aa_engine *e, struct aa_scene_upload *up)
+{
+	if (e->kept_renderer && e->kept_renderer->upload == up) {
+		aa_renderer_destroy(e->kept_renderer);
+		e->kept_renderer = NULL;
+	}
+	aa_scene_upload_destroy(up);
+}
+
 /* Drops least recently used scenes, never `keep`, until the cache fits its budget and has a free slot. */
 static void evict(struct aa_engine *e, const struct aa_scene_upload *keep, int *free_slot)
 {
@@ -81,7 +93,7 @@ static void evict(struct aa_engine *e, const struct aa_scene_upload *keep, int *
 				*free_slot = empty;
 			return;
 		}
-		aa_scene_upload_destroy(e->uploads[oldest]);
+		upload_destroy(e, e->uploads[oldest]);
 		e->uploads[oldest] = NULL;
 		e->upload_stats.evictions++;
 	}
@@ -109,11 +121,34 @@ struct aa_scene_upload *aa_engine_scene_upload(struct aa_engine *e, const struct
 		for (int i = 1; i < AA_UPLOAD_CACHE_SLOTS; i++)
 			if (e->uploads[i]->last_used < e->uploads[oldest]->last_used)
 				oldest = i;
-		aa_scene_upload_destroy(e->uploads[oldest]);
+		upload_destroy(e, e->uploads[oldest]);
 		e->upload_stats.evictions++;
 		slot = oldest;
 	}
 	e->uploads[slot] = up;
 	evict(e, up, NULL); /* a scene larger than the budget still serves this job */
 	return up;
+}
+
+int aa_engine_renderer(struct aa_engine *e, const struct aa_scene *scene, const struct aa_scene_upload *upload,
+		       const struct aa_frame_plan *plan, int width, int height, struct aa_renderer **out,
+		       struct aa_error *err)
+{
+	struct aa_renderer *r = e->kept_renderer;
+	e->kept_renderer = NULL;
+	if (r && aa_renderer_fits(r, scene, upload, plan, width, height)) {
+		aa_renderer_reuse(r, scene, plan);
+		*out = r;
+		return 0;
+	}
+	aa_renderer_destroy(r);
+	return aa_renderer_create(&e->gpu, scene, upload, plan, width, height, out, err);
+}
+
+void aa_engine_renderer_release(struct aa_engine *e, struct aa_renderer *r)
+{
+	if (!r)
+		return;
+	aa_renderer_destroy(e->kept_renderer);
+	e->kept_renderer = r;
 }

@@ -91,7 +91,7 @@ static void job_state_free(struct job_state *js)
 		aa_gpu_buffer_destroy(&js->engine->gpu, &js->readback);
 		aa_gpu_timer_destroy(&js->engine->gpu, &js->timer);
 	}
-	aa_renderer_destroy(js->renderer);
+	aa_engine_renderer_release(js->engine, js->renderer); /* kept, with its pipelines, for the next job */
 	if (!js->borrowed)
 		aa_scene_free(js->scene);
 	aa_image_rgbaf_free(&js->full);
@@ -145,7 +145,7 @@ static int setup(struct job_state *js, struct aa_error *err)
 	struct aa_gpu *gpu = &js->engine->gpu;
 	struct aa_scene_upload *upload = aa_engine_scene_upload(js->engine, js->scene, err);
 	if (!upload ||
-	    aa_renderer_create(gpu, js->scene, upload, &plan, spec->width, spec->height, &js->renderer, err) ||
+	    aa_engine_renderer(js->engine, js->scene, upload, &plan, spec->width, spec->height, &js->renderer, err) ||
 	    aa_gpu_timer_create(gpu, &js->timer, err) ||
 	    aa_reference_create(js->renderer, spec->reference_samples, &js->reference, err))
 		return -1;

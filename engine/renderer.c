@@ -223,7 +223,8 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 {
 	int n = r->scene->texture_count + 1;
-	if (aa_gpu_descriptor_pool_create(r->gpu, (uint32_t)n + 64, &r->pool, err))
+	if (aa_gpu_descriptor_pool_create(r->gpu, (uint32_t)n, &r->pool, err) ||
+	    aa_gpu_descriptor_pool_create(r->gpu, 256, &r->pass_pool, err))
 		return -1;
 	r->texture_sets = calloc((size_t)n, sizeof *r->texture_sets);
 	if (!r->texture_sets)
@@ -334,6 +335,8 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	aa_gpu_pipeline_destroy(g, &r->scene_layout);
 	if (r->pool)
 		vkDestroyDescriptorPool(g->device, r->pool, NULL);
+	if (r->pass_pool)
+		vkDestroyDescriptorPool(g->device, r->pass_pool, NULL);
 	if (r->shadow_pass)
 		vkDestroyRenderPass(g->device, r->shadow_pass, NULL);
 	for (int i = 0; i < r->color_pass_count; i++)
@@ -347,6 +350,23 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	free(r->models);
 	free(r->object_class);
 	free(r);
+}
+
+bool aa_renderer_fits(const struct aa_renderer *r, const struct aa_scene *scene,
+		      const struct aa_scene_upload *upload, const struct aa_frame_plan *plan, int width, int height)
+{
+	/* the renderer's own objects depend on the plan only through these two */
+	return r->upload == upload && upload->scene_uid == scene->uid && r->width == width &&
+	       r->height == height && r->plan.shadow_map == plan->shadow_map &&
+	       r->plan.alpha_test == plan->alpha_test;
+}
+
+void aa_renderer_reuse(struct aa_renderer *r, const struct aa_scene *scene, const struct aa_frame_plan *plan)
+{
+	r->scene = scene; /* the same scene (same uid), perhaps another copy of it */
+	r->plan = *plan;
+	r->inject_nonfinite = false;
+	vkResetDescriptorPool(r->gpu->device, r->pass_pool, 0);
 }
 
 /* Bounds of everything in the scene at this frame, for fitting the shadow map. */
@@ -683,7 +703,7 @@ int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *
 	};
 	struct aa_gpu_image *att[1] = {d->target};
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
-	    aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &p->pipeline, &p->set, err) ||
+	    aa_gpu_descriptor_set_alloc(r->gpu, r->pass_pool, &p->pipeline, &p->set, err) ||
 	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, 1, &p->framebuffer, err))
 		return -1;
 	for (int i = 0; i < d->source_count; i++)

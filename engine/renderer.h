@@ -143,7 +143,8 @@ struct aa_renderer {
 	struct { VkFormat format; bool load; VkRenderPass pass; } color_passes[16]; /* by target format */
 	int color_pass_count;
 	struct aa_gpu_pipeline shadow_pipeline, shadow_cutout_pipeline;
-	VkDescriptorPool pool;
+	VkDescriptorPool pool;           /* the texture sets */
+	VkDescriptorPool pass_pool;      /* the sets of the job's full-screen passes: reset for the next job */
 	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
 	struct aa_material_class material_classes[AA_MAX_MATERIAL_CLASSES];
 	int material_class_count;
@@ -161,6 +162,13 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 		       const struct aa_frame_plan *plan, int width, int height, struct aa_renderer **out,
 		       struct aa_error *err);
 void aa_renderer_destroy(struct aa_renderer *r);
+/* Whether r, made for an earlier job, serves a job on the same uploaded scene, plan and size; a renderer
+ * kept for reuse keeps its pipelines, which lavapipe would otherwise compile again for every job. */
+bool aa_renderer_fits(const struct aa_renderer *r, const struct aa_scene *scene,
+		      const struct aa_scene_upload *upload, const struct aa_frame_plan *plan, int width, int height);
+/* Makes r ready for a new job (r fits it): the job's scene and plan; the passes' sets of the last job are
+ * freed (every method and reference of that job must have been destroyed). */
+void aa_renderer_reuse(struct aa_renderer *r, const struct aa_scene *scene, const struct aa_frame_plan *plan);
 
 /* Sets the camera and object transforms for time t and writes the frame uniforms. Call before recording
  * a frame's command buffers (the uniform buffer is shared by everything recorded for the frame).

@@ -162,7 +162,7 @@ static int fxaa_pass_create(struct aa_method_state *s, struct fxaa_pass *p, cons
 		.layout = p->pipeline.layout, .frag_specialization = resolve ? &s->spec.info : NULL,
 	};
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
-	    aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &p->pipeline, &p->set, err) ||
+	    aa_gpu_descriptor_set_alloc(r->gpu, r->pass_pool, &p->pipeline, &p->set, err) ||
 	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, n, &p->framebuffer, err))
 		return -1;
 	aa_gpu_write_image(r->gpu, p->set, 0, 0, types[0], resolve ? r->gpu->sampler_linear_clamp
