@@ -195,16 +195,6 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 		.depth_test = true, .depth_write = true, .cull = VK_CULL_MODE_NONE,
 		.layout = r->scene_layout.layout, .frag_specialization = &spec,
 	};
-	/* The depth pre-pass: the variant's own vertex shader, so depths are the same bits (invariant
-	 * gl_Position). Not for the GBAA variant (its geometry shader) nor the floor (no shading to save). */
-	if (!d->edge_distances && !d->constant_colour) {
-		struct aa_gpu_graphics_desc depth = g;
-		depth.frag = NULL;
-		depth.frag_specialization = NULL;
-		depth.color_writes_off = true;
-		if (aa_gpu_graphics_pipeline_create(r->gpu, &depth, &v->depth_prepass, err))
-			return -1;
-	}
 	for (int c = 0; c < r->material_class_count; c++) {
 		const struct aa_material_class *mc = &r->material_classes[c];
 		constants.material_pattern = mc->pattern;
@@ -329,7 +319,6 @@ void aa_renderer_destroy(struct aa_renderer *r)
 			aa_gpu_pipeline_destroy(g, &r->variants[i].opaque[c]);
 			aa_gpu_pipeline_destroy(g, &r->variants[i].cutout[c]);
 		}
-		aa_gpu_pipeline_destroy(g, &r->variants[i].depth_prepass);
 		vkDestroyRenderPass(g->device, r->variants[i].pass, NULL);
 	}
 	aa_gpu_pipeline_destroy(g, &r->scene_layout);
@@ -491,10 +480,9 @@ static VkDescriptorSet object_set(struct aa_renderer *r, int o)
 }
 
 /* Draws every object: opaque ones first, cut-outs with the discard pipelines after them. opaque and
- * cutout hold one pipeline per material class, or one for all objects when classes is 1. cutout NULL and
- * opaque_only: the objects that are drawn opaque, all with opaque[0] (the depth pre-pass). */
+ * cutout hold one pipeline per material class, or one for all objects when classes is 1. */
 static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struct aa_gpu_pipeline *opaque,
-			 const struct aa_gpu_pipeline *cutout, int classes, bool opaque_only, float jx, float jy)
+			 const struct aa_gpu_pipeline *cutout, int classes, float jx, float jy)
 {
 	VkDeviceSize zero = 0;
 	vkCmdBindVertexBuffers(cmd, 0, 1, &r->upload->vertices.buffer, &zero);
@@ -508,8 +496,6 @@ static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struc
 					 cutout[c].pipeline;
 			if (is_cutout != (pass == 1))
 				continue;
-			if (opaque_only && r->scene->materials[obj->material_index].alpha_cutout && r->plan.alpha_test)
-				continue; /* its depth depends on the alpha test */
 			const struct aa_gpu_pipeline *p = is_cutout ? &cutout[c] : &opaque[c];
 			if (!p->pipeline)
 				continue;
@@ -536,7 +522,7 @@ void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 	VkClearValue clear = {.depthStencil = {0.0f, 0}};
 	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
 			  &clear, 1);
-	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 1, false, 0.0f, 0.0f);
+	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 1, 0.0f, 0.0f);
 	vkCmdEndRenderPass(cmd);
 	r->shadow_map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
@@ -646,13 +632,8 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 	clears[n++] = (VkClearValue){.color = {.float32 = {0, 0, 0, 0}}};
 	aa_gpu_begin_pass(cmd, v->pass, t->framebuffer, t->width, t->height, clears, n);
 	/* NDC spans 2 units over the target: a jitter of j pixels is 2j/size in NDC. */
-	float jx = 2.0f * jitter_x_px / t->width, jy = 2.0f * jitter_y_px / t->height;
-	/* With the nearest opaque depth in place, the shading draws pass the GREATER_OR_EQUAL test only
-	 * where they are that depth: the last of them drawn wins, as without the pre-pass, so the image is
-	 * the same, and llvmpipe skips shading blocks whose depth test fails (the overdraw). */
-	if (v->depth_prepass.pipeline)
-		draw_objects(r, cmd, &v->depth_prepass, NULL, 1, true, jx, jy);
-	draw_objects(r, cmd, v->opaque, v->cutout, r->material_class_count, false, jx, jy);
+	draw_objects(r, cmd, v->opaque, v->cutout, r->material_class_count, 2.0f * jitter_x_px / t->width,
+		     2.0f * jitter_y_px / t->height);
 	vkCmdEndRenderPass(cmd);
 	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 	t->resolved.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

@@ -95,8 +95,6 @@ struct aa_scene_variant {
 	VkRenderPass pass;
 	/* per material class (renderer.material_classes); borrow the renderer's scene layout */
 	struct aa_gpu_pipeline opaque[AA_MAX_MATERIAL_CLASSES], cutout[AA_MAX_MATERIAL_CLASSES];
-	struct aa_gpu_pipeline depth_prepass; /* depth of the opaque objects first, so that hidden fragments
-					       * fail the early depth test and are never shaded */
 };
 
 /* A colour + depth target the scene pass draws into. */

@@ -129,7 +129,6 @@ struct aa_gpu_graphics_desc {
 	int color_count;
 	uint32_t samples;
 	bool depth_test, depth_write; /* reversed-Z: compare GREATER_OR_EQUAL */
-	bool color_writes_off;        /* writes no colour attachment (a depth pre-pass) */
 	VkCullModeFlags cull;
 	enum aa_blend blend;
 	float depth_bias_constant, depth_bias_slope;

@@ -133,7 +133,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 			.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
 			.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE,
 			.alphaBlendOp = VK_BLEND_OP_ADD,
-			.colorWriteMask = d->color_writes_off ? 0 : 0xf,
+			.colorWriteMask = 0xf,
 		};
 	VkPipelineColorBlendStateCreateInfo blend = {
 		.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
