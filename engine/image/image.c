@@ -2,6 +2,7 @@
 #include "image.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -93,14 +94,83 @@ static uint8_t quantize8(double x)
 	return (uint8_t)floor(clamp01(x) * 255.0 + 0.5);
 }
 
+/* The 8-bit sRGB code of a linear value, by definition. */
+static uint8_t encode_channel_exact(float v)
+{
+	return quantize8(aa_linear_to_srgb((float)clamp01(v)));
+}
+
+/* The same codes without a pow per value: encode_channel_exact is non-decreasing in v, so code k starts
+ * at threshold[k], the smallest float with that code (found by bisection over the float bit patterns of
+ * [0, 1], which order like the floats). A bucket per 2^16 bit patterns gives the code at the bucket's
+ * start, and a step or two up the thresholds finds v's. The same codes as the definition for every float
+ * of [0, 1] (checked once, all 1.07e9 of them; tests/unit/test_metrics.c checks a sample and the code
+ * boundaries). */
+#define ONE_BITS 0x3f800000u
+static float srgb8_threshold[257];
+static uint8_t srgb8_bucket[(ONE_BITS >> 16) + 1];
+static pthread_once_t srgb8_once = PTHREAD_ONCE_INIT;
+
+static float float_of_bits(uint32_t bits)
+{
+	float f;
+	memcpy(&f, &bits, sizeof f);
+	return f;
+}
+
+static void srgb8_table_init(void)
+{
+	srgb8_threshold[0] = 0.0f;
+	for (int k = 1; k <= 255; k++) {
+		uint32_t lo = 0, hi = ONE_BITS; /* the first pattern whose code is >= k lies in (lo, hi] */
+		while (hi - lo > 1) {
+			uint32_t mid = lo + (hi - lo) / 2;
+			if (encode_channel_exact(float_of_bits(mid)) >= k)
+				hi = mid;
+			else
+				lo = mid;
+		}
+		srgb8_threshold[k] = float_of_bits(hi);
+	}
+	srgb8_threshold[256] = INFINITY;
+	for (uint32_t b = 0; b <= (ONE_BITS >> 16); b++)
+		srgb8_bucket[b] = encode_channel_exact(float_of_bits(b << 16));
+}
+
+static uint8_t encode_channel(float v)
+{
+	if (!(v > 0.0f))
+		return 0; /* NaN, negatives and zero, as clamp01 */
+	if (v >= 1.0f)
+		return 255;
+	uint32_t bits;
+	memcpy(&bits, &v, sizeof bits);
+	unsigned k = srgb8_bucket[bits >> 16];
+	while (v >= srgb8_threshold[k + 1])
+		k++;
+	return (uint8_t)k;
+}
+
+uint8_t aa_srgb8_encode_exact(float v)
+{
+	return encode_channel_exact(v);
+}
+
+uint8_t aa_srgb8_encode(float v)
+{
+	pthread_once(&srgb8_once, srgb8_table_init);
+	return encode_channel(v);
+}
+
 void aa_image_encode_srgb8(const struct aa_image_rgbaf *in, struct aa_image_rgba8 *out)
 {
+	pthread_once(&srgb8_once, srgb8_table_init);
 	size_t n = (size_t)in->width * (size_t)in->height;
 	for (size_t p = 0; p < n; p++) {
 		const float *src = in->pixels + 4 * p;
 		uint8_t *dst = out->pixels + 4 * p;
 		for (int c = 0; c < 3; c++)
-			dst[c] = quantize8(aa_linear_to_srgb((float)clamp01(src[c])));
+			dst[c] = encode_channel(src[c]);
 		dst[3] = quantize8(src[3]); /* alpha is coverage, not a colour: no transfer function */
 	}
 }

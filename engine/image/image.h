@@ -31,6 +31,9 @@ float aa_srgb_to_linear(float v);
 float aa_linear_to_srgb(float v);
 /* Linear float -> sRGB 8-bit with round-to-nearest; NaN maps to 0, values are clamped to [0,1]. */
 void aa_image_encode_srgb8(const struct aa_image_rgbaf *in, struct aa_image_rgba8 *out);
+/* One channel as aa_image_encode_srgb8 encodes it (a table), and by the definition (a pow): the same. */
+uint8_t aa_srgb8_encode(float v);
+uint8_t aa_srgb8_encode_exact(float v);
 
 /* IEEE half floats (round to nearest even; overflow to infinity, NaN kept), for raw RGBA16F frames. */
 uint16_t aa_float_to_half(float f);
