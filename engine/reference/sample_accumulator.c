@@ -37,8 +37,9 @@ int aa_sample_accumulator_create(struct aa_renderer *r, const struct aa_scene_ta
 	VkSpecializationInfo spec = {1, &entry, sizeof batch_constant, &batch_constant};
 	for (int i = 0; i < 2; i++) {
 		/* every binding gets an image; the shader reads only the first `batch` renders */
+		/* keep: the pass writes every pixel, so loading (free on lavapipe) beats clearing first */
 		struct aa_fullscreen_desc d = {.frag = "accumulate_batch.frag", .source_count = 1 + AA_ACCUMULATE_BATCH,
-					       .sources = {&acc->sums[1 - i]}, .target = &acc->sums[i],
+					       .sources = {&acc->sums[1 - i]}, .target = &acc->sums[i], .keep = true,
 					       .push_size = sizeof(float) + sizeof(int32_t), .specialization = &spec};
 		for (int k = 0; k < AA_ACCUMULATE_BATCH; k++)
 			d.sources[1 + k] = acc->targets[k < acc->batch ? k : 0].output;
@@ -78,9 +79,8 @@ static void add_pending(struct aa_sample_accumulator *acc, VkCommandBuffer cmd)
 		return;
 	int next = 1 - acc->current;
 	struct { float weight; int32_t count; } push = {acc->weight, acc->pending};
-	if (acc->sums[next].layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL &&
-	    acc->sums[next].layout != VK_IMAGE_LAYOUT_UNDEFINED)
-		aa_gpu_image_barrier(cmd, &acc->sums[next], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	if (acc->sums[acc->current].layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+		aa_gpu_image_barrier(cmd, &acc->sums[acc->current], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 	aa_fullscreen_pass_record(acc->r, cmd, &acc->add[next], &push, sizeof push);
 	acc->current = next;
 	acc->pending = 0;
@@ -96,5 +96,8 @@ void aa_sample_accumulator_render(struct aa_sample_accumulator *acc, VkCommandBu
 struct aa_gpu_image *aa_sample_accumulator_sum(struct aa_sample_accumulator *acc, VkCommandBuffer cmd)
 {
 	add_pending(acc, cmd);
-	return &acc->sums[acc->current];
+	struct aa_gpu_image *sum = &acc->sums[acc->current];
+	if (sum->layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+		aa_gpu_image_barrier(cmd, sum, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+	return sum;
 }
