@@ -12,6 +12,7 @@
 
 #include "daemon.h"
 #include "jobs.h"
+#include "protocol_parse.h"
 
 static void conn_io(struct loop *loop, int fd, int events, void *data);
 
@@ -281,7 +282,7 @@ static void protocol_input(struct conn *c)
 			size_t size = c->payload_expected;
 			c->pending = NULL;
 			c->payload_expected = 0;
-			protocol_request(c, msg, c->in, size);
+			protocol_request(c, msg, json_string_value(json_object_get(msg, "op")), c->in, size);
 			consume(c, size);
 			continue;
 		}
@@ -308,31 +309,26 @@ static void protocol_input(struct conn *c)
 			consume(c, len + 1);
 			continue;
 		}
-		if (len > 0 && c->in[len - 1] == '\r')
-			len--;
-		if (len == 0) {
-			consume(c, (size_t)(nl - c->in) + 1);
+		struct protocol_line pl;
+		protocol_parse_line(c->in, len, d->cfg.max_request_bytes, &pl);
+		consume(c, len + 1);
+		if (pl.kind == LINE_BLANK)
 			continue;
-		}
-		json_error_t jerr;
-		json_t *msg = json_loadb(c->in, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY, &jerr);
-		consume(c, (size_t)(nl - c->in) + 1);
 		d->stats.requests_total++;
-		if (!msg) {
-			protocol_error(c, NULL, "bad_json", "", "not JSON: %s (column %d)", jerr.text, jerr.column);
+		if (pl.kind == LINE_ERROR) {
+			protocol_error(c, pl.tag, pl.code, pl.path, "%s", pl.message);
+			protocol_line_release(&pl);
+			c->discard = pl.discard; /* a refused request's payload is skipped */
+			if (pl.close)
+				conn_close_after_flush(c);
 			continue;
 		}
-		long payload = protocol_payload_size(c, msg);
-		if (payload < 0) {
-			json_decref(msg);
+		if (pl.payload > 0) {
+			c->pending = pl.msg;
+			c->payload_expected = pl.payload;
 			continue;
 		}
-		if (payload > 0) {
-			c->pending = msg;
-			c->payload_expected = (size_t)payload;
-			continue;
-		}
-		protocol_request(c, msg, NULL, 0);
+		protocol_request(c, pl.msg, pl.op, NULL, 0);
 	}
 }
 

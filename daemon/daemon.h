@@ -126,9 +126,8 @@ void conns_pump_watches(struct daemon *d);
 size_t conn_pending(const struct conn *c);
 
 /* protocol.c */
-void protocol_request(struct conn *c, json_t *msg, const char *payload, size_t payload_size);
-/* Checks a request line's announced payload; returns its size or -1 after answering with an error. */
-long protocol_payload_size(struct conn *c, json_t *msg);
+/* Runs one request whose envelope protocol_parse_line checked; steals msg. */
+void protocol_request(struct conn *c, json_t *msg, const char *op, const char *payload, size_t payload_size);
 void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
 	__attribute__((format(printf, 5, 6)));
 void protocol_pump_watch(struct conn *c);

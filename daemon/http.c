@@ -8,10 +8,9 @@
 #include <time.h>
 
 #include "daemon.h"
+#include "http_parse.h"
 #include "jobs.h"
 #include "results/results.h"
-
-#define HTTP_MAX_HEADER 16384
 
 struct response {
 	int status;
@@ -30,6 +29,7 @@ static const char *reason(int status)
 	case 404: return "Not Found";
 	case 405: return "Method Not Allowed";
 	case 414: return "URI Too Long";
+	case 505: return "HTTP Version Not Supported";
 	case 431: return "Request Header Fields Too Large";
 	case 503: return "Service Unavailable";
 	default: return "Error";
@@ -257,65 +257,49 @@ static void respond(struct conn *c, struct response *r, bool head, bool keep_ali
 		conn_close_after_flush(c);
 }
 
-/* Handles every complete request in the input buffer. */
+static void refuse_request(struct conn *c, int status, const char *why)
+{
+	struct response r = {0};
+	char msg[300];
+	snprintf(msg, sizeof msg, "%s\n", why);
+	text(&r, status, msg);
+	respond(c, &r, false, false);
+}
+
+/* Handles every complete request in the input buffer; a malformed one is answered and ends the
+ * connection as soon as its bad line is in (http_parse.c). */
 void http_input(struct conn *c)
 {
 	struct daemon *d = c->d;
 	while (!c->closed && !c->close_after_flush && c->in_len > 0) {
-		char *end = memmem(c->in, c->in_len, "\r\n\r\n", 4);
-		if (!end) {
-			if (c->in_len > HTTP_MAX_HEADER) {
-				struct response r = {0};
-				text(&r, 431, "request header too large\n");
-				respond(c, &r, false, false);
-			}
-			return;
-		}
-		size_t hlen = (size_t)(end - c->in) + 4;
-		char *req = strndup(c->in, hlen - 4);
-		memmove(c->in, c->in + hlen, c->in_len - hlen);
-		c->in_len -= hlen;
-		if (!req)
+		struct http_request req;
+		const char *why;
+		long taken = http_parse_request(c->in, c->in_len, &req, &why);
+		if (taken == 0)
 			return;
 		d->stats.http_requests_total++;
-		struct response r = {0};
-		char *save = NULL, *line = strtok_r(req, "\r\n", &save);
-		char method[16] = "", target[2100] = "", version[16] = "";
-		bool ok = line && sscanf(line, "%15s %2099s %15s", method, target, version) == 3 &&
-			  !strncmp(version, "HTTP/1.", 7) && target[0] == '/';
-		bool keep_alive = ok && strcmp(version, "HTTP/1.0") != 0, authorized = !d->token[0] || !c->via_tcp;
-		bool has_body = false;
-		while (ok && (line = strtok_r(NULL, "\r\n", &save))) {
-			char *colon = strchr(line, ':');
-			if (!colon)
-				continue;
-			*colon = 0;
-			char *value = colon + 1;
-			while (*value == ' ' || *value == '\t')
-				value++;
-			if (!strcasecmp(line, "Connection"))
-				keep_alive = strcasecmp(value, "close") != 0 &&
-					     (strcmp(version, "HTTP/1.0") != 0 || !strcasecmp(value, "keep-alive"));
-			else if (!strcasecmp(line, "Authorization") && d->token[0] && !strncasecmp(value, "Bearer ", 7))
-				authorized |= token_equal(value + 7, d->token);
-			else if ((!strcasecmp(line, "Content-Length") && strtol(value, NULL, 10) != 0) ||
-				 !strcasecmp(line, "Transfer-Encoding"))
-				has_body = true;
+		if (taken < 0) {
+			c->in_len = 0;
+			refuse_request(c, (int)-taken, why);
+			return;
 		}
-		bool head = !strcmp(method, "HEAD");
-		if (!ok || has_body) {
-			text(&r, 400, "bad request: GET or HEAD with no body\n");
-			keep_alive = false;
-		} else if (strcmp(method, "GET") && !head) {
+		memmove(c->in, c->in + taken, c->in_len - (size_t)taken);
+		c->in_len -= (size_t)taken;
+		bool head = !strcmp(req.method, "HEAD");
+		bool authorized = !d->token[0] || !c->via_tcp || (req.bearer[0] && token_equal(req.bearer, d->token));
+		struct response r = {0};
+		if (req.has_body) {
+			refuse_request(c, 400, "bad request: GET or HEAD with no body");
+			return;
+		} else if (strcmp(req.method, "GET") && !head) {
 			text(&r, 405, "only GET and HEAD\n");
 			r.extra = "Allow: GET, HEAD\r\n";
-		} else if (!authorized && strcmp(target, "/healthz")) {
+		} else if (!authorized && strcmp(req.target, "/healthz")) {
 			text(&r, 401, "send Authorization: Bearer TOKEN\n");
 			r.extra = "WWW-Authenticate: Bearer\r\n";
 		} else {
-			route(d, target, &r);
+			route(d, req.target, &r);
 		}
-		free(req);
-		respond(c, &r, head, keep_alive);
+		respond(c, &r, head, req.keep_alive);
 	}
 }

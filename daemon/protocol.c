@@ -58,27 +58,6 @@ static int check_keys(struct conn *c, json_t *msg, json_t *tag, const char *cons
 	return 0;
 }
 
-long protocol_payload_size(struct conn *c, json_t *msg)
-{
-	json_t *p = json_is_object(msg) ? json_object_get(msg, "payload") : NULL;
-	if (!p)
-		return 0;
-	json_t *tag = json_object_get(msg, "tag");
-	if (!json_is_integer(p) || json_integer_value(p) < 0) {
-		protocol_error(c, tag, "bad_request", "payload", "payload is the number of bytes that follow the line");
-		conn_close_after_flush(c); /* the stream cannot be resynchronised */
-		return -1;
-	}
-	json_int_t n = json_integer_value(p);
-	if ((size_t)n > c->d->cfg.max_request_bytes) {
-		protocol_error(c, tag, "too_large", "payload", "payload of %lld bytes is over the limit of %zu "
-			       "(max-request-bytes)", (long long)n, c->d->cfg.max_request_bytes);
-		c->discard = (size_t)n; /* skip it and go on with the next request */
-		return -1;
-	}
-	return (long)n;
-}
-
 static const char *get_job_id(struct conn *c, json_t *msg, json_t *tag)
 {
 	json_t *j = json_object_get(msg, "job");
@@ -400,22 +379,12 @@ static const struct op_entry ops[] = {
 	{"scenes", op_scenes}, {"methods", op_methods}, {"watch", op_watch}, {"get", op_get},
 };
 
-void protocol_request(struct conn *c, json_t *msg, const char *payload, size_t payload_size)
+void protocol_request(struct conn *c, json_t *msg, const char *op, const char *payload, size_t payload_size)
 {
-	json_t *tag = json_is_object(msg) ? json_object_get(msg, "tag") : NULL;
-	const char *op = json_is_object(msg) ? json_string_value(json_object_get(msg, "op")) : NULL;
-	if (!json_is_object(msg))
-		protocol_error(c, NULL, "bad_request", "", "a request is a JSON object: {\"op\": ..., ...}");
-	else if (tag && !json_is_integer(tag) && !(json_is_string(tag) && strlen(json_string_value(tag)) <= 64))
-		protocol_error(c, NULL, "bad_request", "tag", "a tag is an integer or a string of at most 64 bytes");
-	else if (!json_object_get(msg, "op"))
-		protocol_error(c, tag, "bad_request", "op", "missing: what to do (hello, submit, watch, ...)");
-	else if (!op)
-		protocol_error(c, tag, "bad_request", "op", "expected a string");
-	else if (!c->authed && strcmp(op, "hello") != 0)
+	/* the envelope (object, tag, op, payload only with submit) was checked by protocol_parse_line */
+	json_t *tag = json_object_get(msg, "tag");
+	if (!c->authed && strcmp(op, "hello") != 0)
 		protocol_error(c, tag, "unauthorized", "token", "on TCP, send hello with the token first");
-	else if (payload && strcmp(op, "submit") != 0)
-		protocol_error(c, tag, "bad_request", "payload", "only submit takes a payload");
 	else if (strcmp(op, "submit") == 0)
 		op_submit(c, msg, tag, payload, payload_size);
 	else {

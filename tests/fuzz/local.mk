@@ -1,0 +1,43 @@
+# libFuzzer targets (tests/fuzz/README.md): built by `make fuzz` after ./configure --enable-fuzzing
+# CC=clang CXX=clang++; `make fuzz-smoke` runs each for FUZZ_SECONDS on its seed corpus (CI), bench/fuzz
+# runs them long and keeps a log of executions.
+FUZZ_TARGETS = tests/fuzz/fuzz_protocol tests/fuzz/fuzz_http tests/fuzz/fuzz_job_spec tests/fuzz/fuzz_scene \
+	tests/fuzz/fuzz_mesh tests/fuzz/fuzz_image
+EXTRA_DIST += tests/fuzz/README.md tests/fuzz/corpus \
+	$(patsubst %,%.c,$(FUZZ_TARGETS))
+
+if FUZZING
+EXTRA_PROGRAMS = $(FUZZ_TARGETS)
+CLEANFILES += $(FUZZ_TARGETS)
+FUZZ_LINK = -fsanitize=fuzzer
+FUZZ_CPPFLAGS = $(AM_CPPFLAGS) -I$(srcdir)/daemon
+tests_fuzz_fuzz_protocol_SOURCES = tests/fuzz/fuzz_protocol.c daemon/protocol_parse.c
+tests_fuzz_fuzz_protocol_CPPFLAGS = $(FUZZ_CPPFLAGS)
+tests_fuzz_fuzz_protocol_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_protocol_LDADD = $(JANSSON_LIBS)
+tests_fuzz_fuzz_http_SOURCES = tests/fuzz/fuzz_http.c daemon/http_parse.c
+tests_fuzz_fuzz_http_CPPFLAGS = $(FUZZ_CPPFLAGS)
+tests_fuzz_fuzz_http_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_job_spec_SOURCES = tests/fuzz/fuzz_job_spec.c
+tests_fuzz_fuzz_job_spec_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_job_spec_LDADD = $(ENGINE_LIBS)
+tests_fuzz_fuzz_scene_SOURCES = tests/fuzz/fuzz_scene.c
+tests_fuzz_fuzz_scene_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_scene_LDADD = $(ENGINE_LIBS)
+tests_fuzz_fuzz_mesh_SOURCES = tests/fuzz/fuzz_mesh.c
+tests_fuzz_fuzz_mesh_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_mesh_LDADD = $(ENGINE_LIBS)
+tests_fuzz_fuzz_image_SOURCES = tests/fuzz/fuzz_image.c
+tests_fuzz_fuzz_image_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
+tests_fuzz_fuzz_image_LDADD = $(ENGINE_LIBS)
+
+fuzz: $(FUZZ_TARGETS)
+# CI: each target for FUZZ_SECONDS on a copy of its seed corpus; any crash or sanitizer report fails
+FUZZ_SECONDS = 20
+fuzz-smoke: fuzz
+	$(srcdir)/bench/fuzz --seconds $(FUZZ_SECONDS) --build $(abs_top_builddir) --log fuzz-smoke.log
+else
+fuzz fuzz-smoke:
+	@echo "the fuzz targets need ./configure --enable-fuzzing CC=clang CXX=clang++" >&2; exit 1
+endif
+.PHONY: fuzz fuzz-smoke
