@@ -31,7 +31,9 @@ tests_fuzz_fuzz_image_SOURCES = tests/fuzz/fuzz_image.c
 tests_fuzz_fuzz_image_LDFLAGS = $(AM_LDFLAGS) $(FUZZ_LINK)
 tests_fuzz_fuzz_image_LDADD = $(ENGINE_LIBS)
 
-fuzz: $(FUZZ_TARGETS)
+# the generated shader headers first, as `make all` does (the engine library includes them)
+fuzz: $(BUILT_SOURCES)
+	$(MAKE) $(AM_MAKEFLAGS) $(FUZZ_TARGETS)
 # CI: each target for FUZZ_SECONDS on a copy of its seed corpus; any crash or sanitizer report fails
 FUZZ_SECONDS = 20
 fuzz-smoke: fuzz
