@@ -304,6 +304,7 @@ int main(int argc, char **argv)
 	store->loop = d->loop;
 	store->retention_jobs = d->cfg.retention_jobs;
 	store->retention_bytes = d->cfg.retention_bytes;
+	store->max_interruptions = d->cfg.max_job_interruptions;
 	int status = 1;
 	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);

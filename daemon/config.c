@@ -34,6 +34,7 @@ void config_defaults(struct config *c)
 	c->request_timeout_s = 30;
 	c->client_buffer_bytes = 4 << 20;
 	c->retention_jobs = 200;
+	c->max_job_interruptions = 3;
 	c->retention_bytes = 10ull << 30;
 	c->scene_cache_bytes = 512ull << 20;
 	c->drain_timeout_s = 60;
@@ -63,6 +64,7 @@ static const struct key keys[] = {
 	NUM("request-timeout", K_INT, request_timeout_s, 1, 86400),
 	NUM("client-buffer-bytes", K_SIZE, client_buffer_bytes, 4096, 1 << 30),
 	NUM("retention-jobs", K_INT, retention_jobs, 0, 10000000),
+	NUM("max-job-interruptions", K_INT, max_job_interruptions, 0, 1000),
 	NUM("retention-bytes", K_U64, retention_bytes, 0, 1e18),
 	NUM("scene-cache-bytes", K_U64, scene_cache_bytes, 0, 1e18),
 	NUM("drain-timeout", K_INT, drain_timeout_s, 0, 86400),

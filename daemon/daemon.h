@@ -35,6 +35,7 @@ struct config {
 	int request_timeout_s;      /* a started line or payload not completed */
 	size_t client_buffer_bytes; /* output kept per client; beyond it frames are dropped from the stream */
 	int retention_jobs;         /* finished jobs kept */
+	int max_job_interruptions;  /* crashes in a row during one job before it is failed (0: never) */
 	uint64_t retention_bytes;   /* bytes of finished jobs kept */
 	uint64_t scene_cache_bytes;
 	int drain_timeout_s;        /* SIGTERM: how long the running job may take to finish */

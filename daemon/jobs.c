@@ -71,6 +71,10 @@ json_t *job_to_json(const struct job *job)
 		json_object_set_new(o, "finished_at", json_real(job->finished_at));
 	if (job->inline_scene)
 		json_object_set_new(o, "inline_scene", json_true());
+	if (job->run > 0)
+		json_object_set_new(o, "run", json_integer((json_int_t)job->run));
+	if (job->interruptions > 0)
+		json_object_set_new(o, "interruptions", json_integer(job->interruptions));
 	if (job->state == JOB_FAILED)
 		json_object_set_new(o, "error", json_pack("{ss ss ss}", "code", aa_error_code_name(job->error.code),
 							  "message", job->error.message, "path", job->error.path));
@@ -81,7 +85,28 @@ json_t *job_to_json(const struct job *job)
 	return o;
 }
 
-int store_save(struct store *s, struct job *job)
+#define RESERVE_BYTES (256 * 1024)
+
+void store_reserve_space(struct store *s)
+{
+	if (s->reserve_held || !s->reserve_path[0])
+		return;
+	FILE *f = fopen(s->reserve_path, "wb");
+	bool ok = f != NULL;
+	static const char zeros[4096];
+	for (int i = 0; ok && i < RESERVE_BYTES / (int)sizeof zeros; i++)
+		ok = fwrite(zeros, 1, sizeof zeros, f) == sizeof zeros;
+	ok = f && fflush(f) == 0 && fsync(fileno(f)) == 0 && ok;
+	if (f)
+		fclose(f);
+	if (!ok) {
+		unlink(s->reserve_path); /* the disk is full now; the next job tries again */
+		return;
+	}
+	s->reserve_held = true;
+}
+
+static int save_once(struct store *s, struct job *job, struct aa_error *err)
 {
 	char dir[1200];
 	job_dir(s, job, dir, sizeof dir);
@@ -90,12 +115,50 @@ int store_save(struct store *s, struct job *job)
 	char *text = json_dumps(o, JSON_INDENT(1) | JSON_SORT_KEYS);
 	json_decref(o);
 	if (!text)
-		return -1;
-	struct aa_error err = {0};
-	int rc = aa_results_write_file_atomic(dir, "job.json", text, strlen(text), &err);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	int rc = aa_results_write_file_atomic(dir, "job.json", text, strlen(text), err);
 	free(text);
+	return rc;
+}
+
+int store_save(struct store *s, struct job *job)
+{
+	struct aa_error err = {0};
+	int rc = save_once(s, job, &err);
+	if (rc && s->reserve_held && job_state_final(job->state)) {
+		/* most likely a full disk: the reserve exists so that a job's state can still be written */
+		unlink(s->reserve_path);
+		s->reserve_held = false;
+		fprintf(stderr, "aalabd: cannot save job %s (%s); using the reserved space\n", job->id, err.message);
+		memset(&err, 0, sizeof err);
+		rc = save_once(s, job, &err);
+	}
 	if (rc)
 		fprintf(stderr, "aalabd: cannot save job %s: %s\n", job->id, err.message);
+	return rc;
+}
+
+int store_rewrite_events(struct store *s, struct job *job)
+{
+	char dir[1200];
+	job_dir(s, job, dir, sizeof dir);
+	size_t size = 0;
+	for (unsigned long i = 0; i < job->event_count; i++)
+		size += strlen(job->events[i]) + 1;
+	char *text = malloc(size + 1), *p = text;
+	if (!text)
+		return -1;
+	for (unsigned long i = 0; i < job->event_count; i++) {
+		size_t n = strlen(job->events[i]);
+		memcpy(p, job->events[i], n);
+		p[n] = '\n';
+		p += n + 1;
+	}
+	struct aa_error err = {0};
+	int rc = aa_results_write_file_atomic(dir, "events.jsonl", text, size, &err);
+	free(text);
+	if (rc)
+		fprintf(stderr, "aalabd: cannot write the event log of job %s: %s\n", job->id, err.message);
 	return rc;
 }
 
@@ -138,12 +201,15 @@ static uint64_t tree_bytes(const char *dir)
 	return tree_bytes_acc;
 }
 
-/* Clears what a run leaves in a job directory, before a job runs (again) from the start. */
-static void clear_results(const char *dir)
+/* Clears what a run leaves in a job directory, before a job runs (again) from the start; a failed run
+ * keeps its event log (it says why). */
+static void clear_results(const char *dir, bool keep_events)
 {
 	const char *const parts[] = {"frames", "diff", "flip", "linear", "results.json", "report.html", "events.jsonl", NULL};
 	char path[1400];
 	for (int i = 0; parts[i]; i++) {
+		if (keep_events && !strcmp(parts[i], "events.jsonl"))
+			continue;
 		snprintf(path, sizeof path, "%s/%s", dir, parts[i]);
 		remove_tree(path);
 	}
@@ -182,10 +248,15 @@ static struct job *load_job(struct store *s, const char *id)
 	job->total = (int)json_integer_value(json_object_get(o, "total"));
 	job->bytes = (uint64_t)json_integer_value(json_object_get(o, "bytes"));
 	job->inline_scene = json_is_true(json_object_get(o, "inline_scene"));
+	job->interruptions = (int)json_integer_value(json_object_get(o, "interruptions"));
+	job->run = (unsigned long)json_integer_value(json_object_get(o, "run"));
 	json_t *e = json_object_get(o, "error");
 	if (e) {
 		const char *code = json_string_value(json_object_get(e, "code"));
-		job->error.code = code && strcmp(code, "invalid") == 0 ? AA_ERR_INVALID : AA_ERR_INTERNAL;
+		job->error.code = AA_ERR_INTERNAL;
+		for (int c = AA_ERR_INVALID; c <= AA_ERR_INTERNAL; c++)
+			if (code && !strcmp(code, aa_error_code_name(c)))
+				job->error.code = c;
 		snprintf(job->error.message, sizeof job->error.message, "%s",
 			 json_string_value(json_object_get(e, "message")) ? json_string_value(json_object_get(e, "message")) : "");
 		snprintf(job->error.path, sizeof job->error.path, "%s",
@@ -196,14 +267,40 @@ static struct job *load_job(struct store *s, const char *id)
 		job->summary = json_incref(summary);
 	json_decref(o);
 	if (job->state == JOB_RUNNING) {
-		/* the daemon died during this job: run it again from the start */
+		/* the daemon died during this job: run it again from the start, unless it has done so before
+		 * often enough to suspect the job itself (a poison job) */
 		char dir[1200];
 		job_dir(s, job, dir, sizeof dir);
-		clear_results(dir);
-		job->state = JOB_QUEUED;
-		job->started_at = 0;
-		job->done = 0;
-		fprintf(stderr, "aalabd: job %s was interrupted; it will run again\n", job->id);
+		job->interruptions++;
+		if (s->max_interruptions > 0 && job->interruptions >= s->max_interruptions) {
+			clear_results(dir, true);
+			job->state = JOB_FAILED;
+			job->finished_at = now_s();
+			aa_error_set(&job->error, AA_ERR_INTERNAL, "", "the daemon stopped during this job %d times in a "
+				     "row (a crash, kill -9 or power loss); not run again (max-job-interruptions %d)",
+				     job->interruptions, s->max_interruptions);
+			fprintf(stderr, "aalabd: job %s was interrupted %d times in a row; it is failed\n", job->id,
+				job->interruptions);
+			/* its log ends where the crash cut it: close it with the failure, as a run would */
+			store_load_events(s, job);
+			json_t *ev = json_pack("{ss ss sI sI s{ss ss ss}}", "event", "job_failed", "job", job->id, "seq",
+					       (json_int_t)job->event_count + 1, "run", (json_int_t)job->run, "error",
+					       "code", aa_error_code_name(job->error.code), "message", job->error.message,
+					       "path", "");
+			char *line = json_dumps(ev, JSON_COMPACT);
+			json_decref(ev);
+			if (line)
+				store_append_event(s, job, line);
+			store_rewrite_events(s, job);
+			job->log_complete = true;
+			job->bytes = tree_bytes(dir);
+		} else {
+			clear_results(dir, false);
+			job->state = JOB_QUEUED;
+			job->started_at = 0;
+			job->done = 0;
+			fprintf(stderr, "aalabd: job %s was interrupted; it will run again\n", job->id);
+		}
 		store_save(s, job);
 	}
 	if (job->state == JOB_QUEUED)
@@ -238,6 +335,8 @@ int store_open(struct store *s, const char *state_dir, char *err, size_t err_siz
 		snprintf(err, err_size, "state-dir: cannot create '%s': %s", s->dir, strerror(errno));
 		return -1;
 	}
+	snprintf(s->reserve_path, sizeof s->reserve_path, "%s/reserve", state_dir);
+	store_reserve_space(s);
 	DIR *d = opendir(s->dir);
 	if (!d) {
 		snprintf(err, err_size, "state-dir: cannot read '%s': %s", s->dir, strerror(errno));
@@ -349,8 +448,8 @@ void store_append_event(struct store *s, struct job *job, char *line)
 	(void)s;
 	if (!line) {
 		/* the final event of a job cancelled before it ran */
-		json_t *e = json_pack("{ss ss sI ss}", "event", "job_cancelled", "job", job->id, "seq",
-				      (json_int_t)job->event_count + 1, "state", "cancelled");
+		json_t *e = json_pack("{ss ss sI sI ss}", "event", "job_cancelled", "job", job->id, "seq",
+				      (json_int_t)job->event_count + 1, "run", (json_int_t)job->run, "state", "cancelled");
 		line = json_dumps(e, JSON_COMPACT);
 		json_decref(e);
 		if (!line)
@@ -383,8 +482,9 @@ void store_load_events(struct store *s, struct job *job)
 	size_t cap = 0;
 	ssize_t n;
 	while ((n = getline(&line, &cap, f)) > 0) {
-		if (line[n - 1] == '\n')
-			line[n - 1] = 0;
+		if (line[n - 1] != '\n')
+			break; /* the last line of a log cut short by a crash */
+		line[n - 1] = 0;
 		store_append_event(s, job, strdup(line));
 	}
 	free(line);
@@ -437,5 +537,12 @@ void store_clear_results(struct store *s, struct job *job)
 {
 	char dir[1200];
 	job_dir(s, job, dir, sizeof dir);
-	clear_results(dir);
+	clear_results(dir, false);
+}
+
+void store_remove_partial(struct store *s, struct job *job)
+{
+	char dir[1200];
+	job_dir(s, job, dir, sizeof dir);
+	clear_results(dir, true);
 }

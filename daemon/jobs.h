@@ -29,6 +29,8 @@ struct job {
 	bool cancel;              /* asked to stop (cancel op, or drain timeout when requeue is set) */
 	bool requeue;             /* interrupted by shutdown: stays queued on disk */
 	bool inline_scene;        /* the scene came with the request: ID/scene.json */
+	int interruptions;        /* runs in a row cut short by a crash of the daemon (poison jobs) */
+	unsigned long run;        /* runs started (1 on the first): the run epoch in every event */
 	/* event log: events[i] has sequence number i + 1 */
 	char **events;
 	unsigned long event_count, event_cap;
@@ -54,6 +56,9 @@ struct store {
 	struct loop *loop;        /* woken after every change a client may be waiting for */
 	int retention_jobs;
 	uint64_t retention_bytes;
+	int max_interruptions;    /* a job interrupted this many times in a row is failed, not run again */
+	char reserve_path[1100];  /* STATE_DIR/reserve: space set aside for terminal job states */
+	bool reserve_held;
 	pthread_t thread;
 	/* metrics */
 	uint64_t frames_rendered, jobs_finished;
@@ -76,8 +81,13 @@ int store_count_active(struct store *s, const char *client); /* queued + running
 int store_count_state(struct store *s, enum job_state st);   /* lock held */
 /* Cancels: a queued job at once, a running job when the worker next checks. Lock held. */
 int store_cancel(struct store *s, struct job *job, struct aa_error *err);
-/* Writes STATE_DIR/jobs/ID/job.json atomically (lock held). */
+/* Writes STATE_DIR/jobs/ID/job.json atomically (lock held). When the disk is full it gives up the
+ * reserve file and tries once more, so that a job's terminal state is written even then. */
 int store_save(struct store *s, struct job *job);
+/* Sets the reserve file (STATE_DIR/reserve) aside again if it was used; lock held. */
+void store_reserve_space(struct store *s);
+/* Writes the job's event log anew from memory, after appending to it failed (lock held). */
+int store_rewrite_events(struct store *s, struct job *job);
 /* Appends an event line to the log (lock held; takes ownership of line). */
 void store_append_event(struct store *s, struct job *job, char *line);
 /* Loads the event log of a job finished before this run from events.jsonl (lock held). */
@@ -87,6 +97,7 @@ void store_apply_retention(struct store *s);
 json_t *job_to_json(const struct job *job); /* lock held */
 uint64_t store_measure(struct store *s, struct job *job);    /* bytes of the job directory */
 void store_clear_results(struct store *s, struct job *job);  /* before a (re-)run */
+void store_remove_partial(struct store *s, struct job *job); /* a failed run's output, not its event log */
 void job_dir(const struct store *s, const struct job *job, char *out, size_t size);
 
 /* worker.c: the GPU worker thread */

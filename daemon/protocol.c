@@ -354,8 +354,8 @@ static void op_watch(struct conn *c, json_t *msg, json_t *tag)
 	c->frames_dropped = 0;
 	json_decref(c->watch_tag);
 	c->watch_tag = json_incref(tag);
-	json_t *o = json_pack("{ss ss sI}", "job", job->id, "state", job_state_name(job->state), "events",
-			      (json_int_t)job->event_count);
+	json_t *o = json_pack("{ss ss sI sI}", "job", job->id, "state", job_state_name(job->state), "events",
+			      (json_int_t)job->event_count, "run", (json_int_t)job->run);
 	pthread_mutex_unlock(&c->d->store->lock);
 	reply(c, tag, o);
 	protocol_pump_watch(c);

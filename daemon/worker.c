@@ -43,6 +43,8 @@ static int publish(struct run_ctx *ctx, json_t *ev, bool final)
 	json_object_set_new(ev, "job", json_string(ctx->job->id));
 	pthread_mutex_lock(&s->lock);
 	json_object_set_new(ev, "seq", json_integer((json_int_t)ctx->job->event_count + 1));
+	/* seq starts again at 1 when a job runs again (after a crash): run tells a resuming client */
+	json_object_set_new(ev, "run", json_integer((json_int_t)ctx->job->run));
 	char *line = json_dumps(ev, JSON_COMPACT);
 	if (line && ctx->log)
 		fprintf(ctx->log, "%s\n", line);
@@ -213,6 +215,9 @@ static void run_job(struct store *s, struct job *job)
 		free(result);
 	}
 
+	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !ctx.failed_writes);
+	if (failed)
+		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
 	pthread_mutex_lock(&s->lock);
 	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
 	json_t *ev;
@@ -242,14 +247,20 @@ static void run_job(struct store *s, struct job *job)
 	s->jobs_finished += !requeue;
 	pthread_mutex_unlock(&s->lock);
 	publish(&ctx, ev, true);
+	bool log_ok = ctx.log != NULL;
 	if (ctx.log) {
-		fflush(ctx.log);
-		fsync(fileno(ctx.log));
-		fclose(ctx.log);
+		log_ok = !ferror(ctx.log) && fflush(ctx.log) == 0 && fsync(fileno(ctx.log)) == 0;
+		log_ok &= fclose(ctx.log) == 0;
 	}
+	pthread_mutex_lock(&s->lock);
+	if (!log_ok) /* the disk filled up under the log: write it again now that partial output is gone */
+		store_rewrite_events(s, job);
+	pthread_mutex_unlock(&s->lock);
 	uint64_t bytes = store_measure(s, job);
 	pthread_mutex_lock(&s->lock);
 	job->bytes = bytes;
+	if (!requeue)
+		job->interruptions = 0;
 	store_save(s, job);
 	store_apply_retention(s);
 	pthread_mutex_unlock(&s->lock);
@@ -277,6 +288,8 @@ static void *worker_main(void *arg)
 		job->state = JOB_RUNNING;
 		job->started_at = now_s();
 		job->done = 0;
+		job->run++;
+		store_reserve_space(s); /* given up when the last job filled the disk */
 		for (unsigned long i = 0; i < job->event_count; i++)
 			free(job->events[i]);
 		job->event_count = 0;
