@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include "daemon.h"
@@ -79,11 +80,16 @@ static int read_config(int argc, char **argv, struct config *cfg, char *err, siz
 	return 0;
 }
 
+/* Reads the bearer token. A token file others can read or write is refused, as ssh refuses a loose key:
+ * whoever reads it can submit jobs. On failure the token in use stays as it was (a failed reload must not
+ * turn authentication off). */
 static int read_token(struct daemon *d, char *err, size_t err_size)
 {
-	d->token[0] = 0;
-	if (!d->cfg.token_file[0])
+	if (!d->cfg.token_file[0]) {
+		d->token[0] = 0;
 		return 0;
+	}
+	char token[sizeof d->token] = "";
 	struct stat st;
 	FILE *f = fopen(d->cfg.token_file, "r");
 	if (!f || fstat(fileno(f), &st) < 0) {
@@ -92,14 +98,56 @@ static int read_token(struct daemon *d, char *err, size_t err_size)
 			fclose(f);
 		return -1;
 	}
-	if (st.st_mode & 077)
-		fprintf(stderr, "aalabd: warning: token file %s is readable by others (chmod 600)\n", d->cfg.token_file);
-	if (!fgets(d->token, sizeof d->token, f))
-		d->token[0] = 0;
+	if (!S_ISREG(st.st_mode) || (st.st_mode & 077)) {
+		snprintf(err, err_size, "token-file: %.400s is %s (mode %03o); it must be a file only its owner can "
+			 "read: chmod 600 %.400s", d->cfg.token_file, S_ISREG(st.st_mode) ? "readable or writable by others" :
+			 "not a regular file", (unsigned)(st.st_mode & 0777), d->cfg.token_file);
+		fclose(f);
+		return -1;
+	}
+	if (!fgets(token, sizeof token, f))
+		token[0] = 0;
 	fclose(f);
-	d->token[strcspn(d->token, "\r\n")] = 0;
-	if (strlen(d->token) < 16) {
+	token[strcspn(token, "\r\n")] = 0;
+	if (strlen(token) < 16) {
 		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters", d->cfg.token_file);
+		return -1;
+	}
+	memcpy(d->token, token, sizeof token);
+	return 0;
+}
+
+/* Every check start-up makes before it opens anything, so that --check says what start-up would. */
+static int check_config(struct daemon *d, char *err, size_t err_size)
+{
+	const struct config *c = &d->cfg;
+	if (c->tcp[0] && !c->token_file[0]) {
+		snprintf(err, err_size, "tcp: a token file is required (--token-file)");
+		return -1;
+	}
+	if (c->tcp[0] && check_tcp_address("tcp", c->tcp, err, err_size))
+		return -1;
+	if (c->http[0] && check_tcp_address("http", c->http, err, err_size))
+		return -1;
+	if (strlen(c->socket_path) >= sizeof ((struct sockaddr_un *)0)->sun_path) {
+		snprintf(err, err_size, "socket: path '%s' is too long", c->socket_path);
+		return -1;
+	}
+	/* the state directory exists and is writable, or the nearest folder above it that exists is */
+	char dir[sizeof c->state_dir];
+	snprintf(dir, sizeof dir, "%s", c->state_dir);
+	struct stat st;
+	while (stat(dir, &st) != 0) {
+		char *slash = strrchr(dir, '/');
+		if (!slash || slash == dir) {
+			snprintf(dir, sizeof dir, "%s", slash == dir ? "/" : ".");
+			break;
+		}
+		*slash = 0;
+	}
+	if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode) || access(dir, W_OK | X_OK) != 0) {
+		snprintf(err, err_size, "state-dir: cannot create or write '%.400s' (%.400s is not a writable folder)",
+			 c->state_dir, dir);
 		return -1;
 	}
 	return 0;
@@ -131,10 +179,6 @@ static int open_listeners(struct daemon *d, int argc, char **argv, char *err, si
 		add_listener(d, fd, CONN_PROTOCOL, false, d->cfg.socket_path);
 	}
 	if (d->cfg.tcp[0]) {
-		if (!d->token[0]) {
-			snprintf(err, err_size, "tcp: a token file is required (--token-file)");
-			return -1;
-		}
 		int fd = listen_tcp(d->cfg.tcp, err, err_size);
 		if (fd < 0)
 			return -1;
@@ -180,7 +224,7 @@ static void reload(struct daemon *d, int argc, char **argv)
 	} else {
 		config_apply_reload(&d->cfg, &fresh);
 		if (read_token(d, err, sizeof err))
-			fprintf(stderr, "aalabd: reload: %s\n", err);
+			fprintf(stderr, "aalabd: reload: %s; keeping the token in use\n", err);
 		pthread_mutex_lock(&d->store->lock);
 		d->store->retention_jobs = d->cfg.retention_jobs;
 		d->store->retention_bytes = d->cfg.retention_bytes;
@@ -276,7 +320,8 @@ int main(int argc, char **argv)
 	static struct daemon daemon;
 	struct daemon *d = &daemon;
 	char err[1200];
-	if (read_config(argc, argv, &d->cfg, err, sizeof err) || read_token(d, err, sizeof err)) {
+	if (read_config(argc, argv, &d->cfg, err, sizeof err) || read_token(d, err, sizeof err) ||
+	    check_config(d, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n%s", err, usage);
 		return 2;
 	}

@@ -151,6 +151,8 @@ void http_input(struct conn *c);
 /* listen.c */
 int listen_unix(const char *path, char *err, size_t err_size);
 int listen_tcp(const char *host_port, char *err, size_t err_size);
+/* Checks that HOST:PORT parses and resolves, without listening (aalabd --check). */
+int check_tcp_address(const char *what, const char *host_port, char *err, size_t err_size);
 int listen_systemd(struct daemon *d, char *err, size_t err_size);
 void sd_notifyf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* WATCHDOG_USEC halved in ms, or 0 when systemd does not watch this process. */

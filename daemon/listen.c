@@ -86,6 +86,23 @@ bool address_is_loopback(const char *host_port)
 	return strcmp(host, "localhost") == 0 || strncmp(host, "127.", 4) == 0 || strcmp(host, "::1") == 0;
 }
 
+int check_tcp_address(const char *what, const char *host_port, char *err, size_t err_size)
+{
+	char host[256], port[32];
+	if (split_host_port(host_port, host, sizeof host, port, sizeof port)) {
+		snprintf(err, err_size, "%s: '%s' is not HOST:PORT", what, host_port);
+		return -1;
+	}
+	struct addrinfo hints = {.ai_family = AF_UNSPEC, .ai_socktype = SOCK_STREAM, .ai_flags = AI_PASSIVE}, *ai;
+	int gai = getaddrinfo(host, port, &hints, &ai);
+	if (gai) {
+		snprintf(err, err_size, "%s: %s: %s", what, host_port, gai_strerror(gai));
+		return -1;
+	}
+	freeaddrinfo(ai);
+	return 0;
+}
+
 int listen_tcp(const char *host_port, char *err, size_t err_size)
 {
 	char host[256], port[32];

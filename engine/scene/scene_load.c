@@ -105,9 +105,21 @@ int aa_scene_resolve(const char *name_or_path, char *out_path, size_t out_size, 
 	const char *dirs[3];
 	int nd = scene_dirs(dirs);
 	for (int d = 0; d < nd; d++) {
-		int n = snprintf(out_path, out_size, "%s/%s.json", dirs[d], name);
-		if (n > 0 && (size_t)n < out_size && access(out_path, R_OK) == 0)
-			return 0;
+		char joined[PATH_MAX], real_dir[PATH_MAX], real_file[PATH_MAX];
+		int n = snprintf(joined, sizeof joined, "%s/%s.json", dirs[d], name);
+		if (n <= 0 || (size_t)n >= sizeof joined || access(joined, R_OK) != 0)
+			continue;
+		/* A scene name stays inside its scene folder: a symlink out of it (passwd.json -> /etc/passwd)
+		 * is refused without reading, or quoting, the file it points to. */
+		size_t dl = realpath(dirs[d], real_dir) ? strlen(real_dir) : 0;
+		if (!dl || !realpath(joined, real_file) || strncmp(real_file, real_dir, dl) != 0 ||
+		    (real_file[dl] != '/' && strcmp(real_dir, "/") != 0))
+			return aa_error_set(err, AA_ERR_INVALID, "scene", "scene '%s' leads out of its scene folder "
+					    "(a symbolic link); refused", name);
+		if (strlen(real_file) >= out_size)
+			return aa_error_set(err, AA_ERR_INVALID, "scene", "scene path too long");
+		memcpy(out_path, real_file, strlen(real_file) + 1);
+		return 0;
 	}
 	char **names = NULL, list[400] = "";
 	int count = 0;
