@@ -399,6 +399,7 @@ out:
 	for (struct conn *c = d->conns; c; c = c->next)
 		conn_close(c);
 	conns_sweep(d);
+	stream_cache_clear();
 	for (int i = 0; i < d->listener_count; i++) {
 		close(d->listeners[i].fd);
 		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)

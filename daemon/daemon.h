@@ -138,6 +138,7 @@ enum { FRAMES_NONE, FRAMES_PNG, FRAMES_RGBA8, FRAMES_RGBA16F };
 
 /* stream.c: watch streams and stored files */
 void op_get(struct conn *c, json_t *msg, json_t *tag);
+void stream_cache_clear(void); /* frees the frames kept for watchers (at exit) */
 /* Checks a file name inside a job directory (results.json, report.html, events.jsonl, scene.json,
  * frames|diff/NAME/NNNN.png) and writes its path; -1 if it is not one of those. */
 int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *out, size_t size);

@@ -91,6 +91,96 @@ const char *file_content_type(const char *rel)
 	return "application/octet-stream";
 }
 
+/* Frames as sent, shared by every watcher: a frame is read (and for rgba8 decoded) once, not once per
+ * watcher, and recent ones are kept (up to FRAME_CACHE_SLOTS frames and FRAME_CACHE_BYTES), since
+ * watchers of one job ask for the same frames at about the same time, or replay the same log. Keyed by
+ * the file and its size and time, so a job run again never gets an old frame. */
+#define FRAME_CACHE_SLOTS 32
+#define FRAME_CACHE_BYTES (64u << 20)
+
+struct cached_frame {
+	char path[1400];
+	int format;
+	off_t file_size;
+	struct timespec mtime;
+	char *data;
+	size_t size;
+	int width, height;
+	unsigned long last_use;
+};
+
+static struct cached_frame frame_cache[FRAME_CACHE_SLOTS];
+static unsigned long frame_cache_clock;
+
+void stream_cache_clear(void)
+{
+	for (int i = 0; i < FRAME_CACHE_SLOTS; i++) {
+		free(frame_cache[i].data);
+		frame_cache[i] = (struct cached_frame){0};
+	}
+}
+
+static const struct cached_frame *frame_get(struct conn *c, const char *path, const struct stat *st)
+{
+	struct cached_frame *slot = &frame_cache[0];
+	for (int i = 0; i < FRAME_CACHE_SLOTS; i++) {
+		struct cached_frame *f = &frame_cache[i];
+		if (f->data && f->format == c->watch_frames && f->file_size == st->st_size &&
+		    f->mtime.tv_sec == st->st_mtim.tv_sec && f->mtime.tv_nsec == st->st_mtim.tv_nsec &&
+		    !strcmp(f->path, path)) {
+			f->last_use = ++frame_cache_clock;
+			return f;
+		}
+		if (!f->data || f->last_use < slot->last_use)
+			slot = f;
+	}
+	struct cached_frame fresh = {.format = c->watch_frames, .file_size = st->st_size, .mtime = st->st_mtim};
+	snprintf(fresh.path, sizeof fresh.path, "%s", path);
+	if (c->watch_frames == FRAMES_RGBA8) {
+		struct aa_image_rgba8 img = {0};
+		struct aa_error err = {0};
+		if (aa_image_read_rgba8(path, &img, &err))
+			return NULL;
+		fresh.data = (char *)img.pixels;
+		fresh.size = (size_t)img.width * img.height * 4;
+		fresh.width = img.width;
+		fresh.height = img.height;
+	} else { /* PNG bytes, or raw RGBA16F halves stored as they are sent */
+		if (read_whole_file(path, c->d->cfg.client_buffer_bytes * 4, &fresh.data, &fresh.size))
+			return NULL;
+		fresh.width = c->watch_job->spec.width;
+		fresh.height = c->watch_job->spec.height;
+	}
+	free(slot->data);
+	*slot = fresh;
+	slot->last_use = ++frame_cache_clock;
+	/* within the byte budget: the least recently used others go first */
+	for (;;) {
+		size_t total = 0;
+		struct cached_frame *oldest = NULL;
+		for (int i = 0; i < FRAME_CACHE_SLOTS; i++) {
+			struct cached_frame *f = &frame_cache[i];
+			total += f->data ? f->size : 0;
+			if (f->data && f != slot && (!oldest || f->last_use < oldest->last_use))
+				oldest = f;
+		}
+		if (total <= FRAME_CACHE_BYTES || !oldest)
+			break;
+		free(oldest->data);
+		*oldest = (struct cached_frame){0};
+	}
+	return slot;
+}
+
+/* The bytes a frame will take in the stream, known before reading it. */
+static size_t frame_size_estimate(const struct conn *c, const struct stat *st)
+{
+	const struct aa_job_spec *spec = &c->watch_job->spec;
+	if (c->watch_frames == FRAMES_RGBA8)
+		return (size_t)spec->width * spec->height * 4;
+	return (size_t)st->st_size;
+}
+
 /* Sends one event of the log, with its frame as a payload when the watch asked for frames. */
 static void send_event(struct conn *c, char *line)
 {
@@ -106,40 +196,30 @@ static void send_event(struct conn *c, char *line)
 		return;
 	}
 	char path[1400];
-	char *data = NULL;
-	size_t size = 0;
-	struct aa_image_rgba8 img = {0};
-	struct aa_error err = {0};
-	bool have = job_file_path(c->d->store->dir, c->watch_job->id, image, path, sizeof path) == 0;
-	if (have && c->watch_frames == FRAMES_RGBA8) {
-		have = aa_image_read_rgba8(path, &img, &err) == 0;
-		data = (char *)img.pixels;
-		size = (size_t)img.width * img.height * 4;
-		json_object_set_new(ev, "width", json_integer(img.width));
-		json_object_set_new(ev, "height", json_integer(img.height));
-	} else if (have) { /* PNG bytes, or raw RGBA16F halves stored as they are sent */
-		have = read_whole_file(path, c->d->cfg.client_buffer_bytes * 4, &data, &size) == 0;
-		if (c->watch_frames == FRAMES_RGBA16F) {
-			json_object_set_new(ev, "width", json_integer(c->watch_job->spec.width));
-			json_object_set_new(ev, "height", json_integer(c->watch_job->spec.height));
-		}
-	}
-	/* a client that is behind loses frames, never events, and never slows the renderer */
-	if (have && conn_pending(c) > 0 && conn_pending(c) + size > c->d->cfg.client_buffer_bytes) {
+	struct stat st;
+	bool have = job_file_path(c->d->store->dir, c->watch_job->id, image, path, sizeof path) == 0 &&
+		    stat(path, &st) == 0;
+	/* A client that is behind loses frames, never events, and never slows the renderer. The check comes
+	 * before the frame is read or decoded, so a stalled watcher costs the loop no more than an idle one. */
+	if (have && conn_pending(c) > 0 && conn_pending(c) + frame_size_estimate(c, &st) > c->d->cfg.client_buffer_bytes) {
 		have = false;
 		c->frames_dropped++;
 		c->d->stats.frames_dropped_total++;
 		json_object_set_new(ev, "frame_dropped", json_string("client too slow: frame not sent"));
 	}
-	if (have) {
-		json_object_set_new(ev, "payload", json_integer((json_int_t)size));
+	const struct cached_frame *frame = have ? frame_get(c, path, &st) : NULL;
+	if (frame) {
+		if (c->watch_frames != FRAMES_PNG) {
+			json_object_set_new(ev, "width", json_integer(frame->width));
+			json_object_set_new(ev, "height", json_integer(frame->height));
+		}
+		json_object_set_new(ev, "payload", json_integer((json_int_t)frame->size));
 		static const char *const formats[] = {"none", "png", "rgba8", "rgba16f"};
 		json_object_set_new(ev, "payload_format", json_string(formats[c->watch_frames]));
 	}
 	conn_send_json(c, ev);
-	if (have)
-		conn_send(c, data, size);
-	free(data);
+	if (frame)
+		conn_send(c, frame->data, frame->size);
 }
 
 void protocol_pump_watch(struct conn *c)
