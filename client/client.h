@@ -76,7 +76,9 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 /* cmd_get.c: the cost-vs-accuracy table from a results.json document. */
 void aa_print_results_table(json_t *results, FILE *out);
 /* cmd_submit.c: `aalab run` through the daemon: submit, watch, download into dir, print. */
-int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, bool images, bool print_json, bool quiet);
+/* Runs the job on aalabd and fetches its files into dir; the table names shown_dir (where they end up). */
+int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,
+		  bool print_json, bool quiet);
 
 /* table.c: the cost-vs-accuracy table and progress display */
 void aa_print_table(const struct aa_job_result *r, FILE *out);

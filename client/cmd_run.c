@@ -11,6 +11,7 @@
 
 #include "aa.h"
 #include "client.h"
+#include "out_dir.h"
 #include "results/results.h"
 
 const char aa_run_help[] =
@@ -29,7 +30,10 @@ const char aa_run_help[] =
 	"  --reference-samples N   samples of the accumulated reference, even (default 64)\n"
 	"  --repeat N              render and time each method's frame N times, the first scored, for\n"
 	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
-	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS)\n"
+	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS); written to a\n"
+	"                          folder beside it and renamed when complete. A non-empty DIR that is not\n"
+	"                          an aalab result is refused; an earlier aalab result only with --force\n"
+	"  --force                 replace the earlier aalab result in --out DIR\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
 	"  --json                  print results.json to standard output instead of the table\n"
@@ -44,6 +48,7 @@ struct run_output {
 	const char *dir;
 	bool images;
 	bool quiet;
+	volatile int frames_written; /* what Ctrl-C reports as kept */
 	int failed_writes;
 	struct aa_error write_err;
 };
@@ -53,6 +58,8 @@ static int on_event(const struct aa_event *ev, void *user)
 	struct run_output *o = user;
 	if (o->images && aa_results_write_event_images(o->dir, ev, &o->write_err))
 		o->failed_writes++;
+	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
+		o->frames_written++;
 	if (ev->type == AA_EVENT_PROGRESS && !o->quiet)
 		aa_progress_update(ev->done, ev->total, "rendering");
 	/* a failed image write stops the job: carrying on would lose data silently */
@@ -85,32 +92,20 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 	return -1;
 }
 
-static int mkdir_p(const char *dir)
-{
-	char tmp[1024];
-	snprintf(tmp, sizeof tmp, "%s", dir);
-	for (char *p = tmp + 1; *p; p++)
-		if (*p == '/') {
-			*p = 0;
-			if (mkdir(tmp, 0777) != 0 && errno != EEXIST)
-				return -1;
-			*p = '/';
-		}
-	return mkdir(tmp, 0777) != 0 && errno != EEXIST ? -1 : 0;
-}
-
 int cmd_run(int argc, char **argv)
 {
-	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP };
+	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
-		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP},
+		{"force", no_argument, 0, OPT_FORCE}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
 	const char *out_dir = NULL, *device = NULL, *connect = NULL;
-	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false;
+	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false;
+	struct aa_out_dir od = {0};
 	int status = AA_EXIT_USAGE, c, idx;
 	optind = 1;
 	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
@@ -126,6 +121,7 @@ int cmd_run(int argc, char **argv)
 		case OPT_QUIET: quiet = true; break;
 		case OPT_LOCAL: local = true; break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_FORCE: force = true; break;
 		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(aa_run_help, stderr); goto out;
 		}
@@ -161,14 +157,20 @@ int cmd_run(int argc, char **argv)
 		json_decref(job);
 		goto out;
 	}
-	if (mkdir_p(dir)) {
-		fprintf(stderr, "aalab run: out: cannot create '%s': %s\n", dir, strerror(errno));
+	if (aa_out_dir_prepare(&od, dir, force, cerr, sizeof cerr)) {
+		fprintf(stderr, "aalab run: %s\n", cerr);
 		aa_conn_close(conn);
 		json_decref(job);
 		goto out;
 	}
+	snprintf(dir, sizeof dir, "%s", od.final);
 	if (conn) {
-		status = aa_run_remote(conn, job, dir, images, print_json, quiet);
+		aa_out_dir_on_interrupt(&od, NULL, 0);
+		status = aa_run_remote(conn, job, od.work, od.final, images, print_json, quiet);
+		if (status == AA_EXIT_OK && aa_out_dir_commit(&od, cerr, sizeof cerr)) {
+			fprintf(stderr, "aalab run: %s\n", cerr);
+			status = AA_EXIT_FAILED;
+		}
 		aa_conn_close(conn);
 		json_decref(job);
 		goto out;
@@ -182,7 +184,8 @@ int cmd_run(int argc, char **argv)
 		status = err.path[0] ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;
 	}
-	struct run_output ro = {.dir = dir, .images = images && spec.keep_frames, .quiet = quiet};
+	struct run_output ro = {.dir = od.work, .images = images && spec.keep_frames, .quiet = quiet};
+	aa_out_dir_on_interrupt(&od, ro.images ? &ro.frames_written : NULL, spec.frames * (1 + spec.method_count));
 	struct aa_job_result *result = NULL;
 	rc = aa_job_run(engine, &spec, on_event, &ro, &result, &err);
 	if (!quiet)
@@ -199,8 +202,11 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	status = AA_EXIT_OK;
-	if (aa_results_write_json(result, dir, &err) || aa_report_write_html(result, dir, &err)) {
+	if (aa_results_write_json(result, od.work, &err) || aa_report_write_html(result, od.work, &err)) {
 		fprintf(stderr, "aalab run: %s\n", err.message);
+		status = AA_EXIT_FAILED;
+	} else if (aa_out_dir_commit(&od, cerr, sizeof cerr)) {
+		fprintf(stderr, "aalab run: %s\n", cerr);
 		status = AA_EXIT_FAILED;
 	}
 	if (print_json) {
@@ -219,6 +225,8 @@ int cmd_run(int argc, char **argv)
 	aa_job_result_free(result);
 	free(result);
 out:
+	if (status != AA_EXIT_OK)
+		aa_out_dir_discard(&od); /* half a result is no result; DIR stays as it was */
 	json_decref(overrides);
 	return status;
 }

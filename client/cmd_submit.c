@@ -116,7 +116,8 @@ out:
 	return status;
 }
 
-int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, bool images, bool print_json, bool quiet)
+int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,
+		  bool print_json, bool quiet)
 {
 	if (!images)
 		json_object_set_new(job, "keep_frames", json_false());
@@ -148,7 +149,7 @@ int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, bool images, 
 		fputc('\n', stdout);
 	} else {
 		aa_print_results_table(results, stdout);
-		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
+		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", shown_dir, shown_dir);
 	}
 	json_decref(results);
 	return AA_EXIT_OK;

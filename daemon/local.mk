@@ -12,7 +12,8 @@ aalabd_CPPFLAGS = $(AM_CPPFLAGS) \
 aalabd_LDADD = $(ENGINE_LIBS)
 
 # the client's service commands and its protocol connection
-aalab_SOURCES += client/job_args.c client/remote.c client/cmd_submit.c client/cmd_watch.c \
+aalab_SOURCES += client/out_dir.h client/out_dir.c \
+	client/job_args.c client/remote.c client/cmd_submit.c client/cmd_watch.c \
 	client/cmd_status.c client/cmd_jobs.c client/cmd_cancel.c client/cmd_get.c
 
 # the dashboard page aalabd serves at /
@@ -39,7 +40,7 @@ DAEMON_TESTS = tests/integration/daemon_protocol.py tests/integration/daemon_job
 	tests/integration/daemon_disk.py tests/integration/daemon_config.py tests/integration/daemon_http.py \
 	tests/integration/daemon_cli.sh \
 	tests/integration/daemon_systemd.py tests/integration/protocol_example.sh \
-	tests/integration/systemd_units.sh tests/integration/dashboard.sh
+	tests/integration/systemd_units.sh tests/integration/dashboard.sh tests/cli_outdir.sh
 TESTS += $(DAEMON_TESTS)
 EXTRA_DIST += $(DAEMON_TESTS) tests/integration/daemon_lib.py tests/integration/daemon_valgrind.sh \
 	tests/integration/valgrind.supp
