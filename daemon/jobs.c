@@ -30,6 +30,14 @@ bool job_state_final(enum job_state s)
 	return s == JOB_DONE || s == JOB_FAILED || s == JOB_CANCELLED;
 }
 
+bool job_state_known(const char *name)
+{
+	for (int s = JOB_QUEUED; s <= JOB_CANCELLED; s++)
+		if (strcmp(name, job_state_name(s)) == 0)
+			return true;
+	return false;
+}
+
 static int state_from_name(const char *name)
 {
 	for (int s = JOB_QUEUED; s <= JOB_CANCELLED; s++)

@@ -68,6 +68,7 @@ struct store {
 
 const char *job_state_name(enum job_state s);
 bool job_state_final(enum job_state s);
+bool job_state_known(const char *name);
 
 /* Opens STATE_DIR (creating it), reads every job back: queued jobs stay queued, jobs that were running
  * when the daemon died are queued again to re-run from the start. */

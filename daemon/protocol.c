@@ -90,8 +90,9 @@ static struct job *lock_job(struct conn *c, json_t *msg, json_t *tag)
 
 static json_t *limits_json(const struct config *cfg)
 {
-	return json_pack("{sI sf si si si sI si}", "max_request_bytes", (json_int_t)cfg->max_request_bytes,
-			 "max_job_budget", cfg->max_job_budget, "max_jobs_per_client", cfg->max_jobs_per_client,
+	/* the budget is a count (pixels x frames x samples): an integer, as the other limits */
+	return json_pack("{sI sI si si si sI si}", "max_request_bytes", (json_int_t)cfg->max_request_bytes,
+			 "max_job_budget", (json_int_t)cfg->max_job_budget, "max_jobs_per_client", cfg->max_jobs_per_client,
 			 "idle_timeout", cfg->idle_timeout_s, "slow_client_timeout", cfg->slow_client_timeout_s,
 			 "client_buffer_bytes", (json_int_t)cfg->client_buffer_bytes, "max_frames", AA_MAX_FRAMES);
 }
@@ -111,7 +112,12 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 	if (check_keys(c, msg, tag, keys))
 		return;
 	json_t *v = json_object_get(msg, "version");
-	if (v && (!json_is_integer(v) || json_integer_value(v) < 1)) {
+	if (v && !json_is_integer(v)) {
+		protocol_error(c, tag, "bad_request", "version", "expected an integer: the highest protocol version the "
+			       "client speaks (this server speaks %d)", AALABD_PROTOCOL_VERSION);
+		return;
+	}
+	if (v && json_integer_value(v) < 1) {
 		protocol_error(c, tag, "unsupported_version", "version", "this server speaks protocol version %d; "
 			       "send the highest version the client speaks", AALABD_PROTOCOL_VERSION);
 		return;
@@ -239,7 +245,7 @@ static void op_list(struct conn *c, json_t *msg, json_t *tag)
 	if (check_keys(c, msg, tag, keys))
 		return;
 	json_t *st = json_object_get(msg, "state"), *lim = json_object_get(msg, "limit");
-	if (st && !json_is_string(st)) {
+	if (st && (!json_is_string(st) || !job_state_known(json_string_value(st)))) {
 		protocol_error(c, tag, "bad_request", "state", "expected queued, running, done, failed or cancelled");
 		return;
 	}

@@ -319,7 +319,7 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 	}
 	if (job_file_path(c->d->store->dir, id, file, path, sizeof path)) {
 		protocol_error(c, tag, "invalid", "file", "not a file of a job: results.json, report.html, events.jsonl, "
-			       "scene.json, or frames|diff|flip/NAME/NNNN.png");
+			       "scene.json, frames|diff|flip/NAME/NNNN.png or linear/NAME/NNNN.rgba16f");
 		return;
 	}
 	char *data;

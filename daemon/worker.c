@@ -52,6 +52,8 @@ static int publish(struct run_ctx *ctx, json_t *ev, bool final)
 		store_append_event(s, ctx->job, line);
 	if (final)
 		ctx->job->log_complete = true;
+	if (ctx->done > ctx->job->done) /* status never says less than the last frame event did */
+		ctx->job->done = ctx->done;
 	int stop = ctx->job->cancel;
 	pthread_mutex_unlock(&s->lock);
 	json_decref(ev);
@@ -143,7 +145,8 @@ static int on_event(const struct aa_event *ev, void *user)
 		return publish(ctx, frame_event(ctx, ev), false);
 	case AA_EVENT_PROGRESS:
 		pthread_mutex_lock(&s->lock);
-		ctx->job->done = ev->done;
+		if (ev->done > ctx->job->done)
+			ctx->job->done = ev->done;
 		ctx->job->total = ev->total;
 		int stop = ctx->job->cancel;
 		pthread_mutex_unlock(&s->lock);
@@ -218,7 +221,13 @@ static void run_job(struct store *s, struct job *job)
 	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !ctx.failed_writes);
 	if (failed)
 		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
+	if (ctx.log)
+		fflush(ctx.log);
+	/* measured before the state changes, so that status never shows a finished job with bytes 0; the
+	 * final event's line is added when it is measured again below */
+	uint64_t bytes_so_far = store_measure(s, job);
 	pthread_mutex_lock(&s->lock);
+	job->bytes = bytes_so_far;
 	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
 	json_t *ev;
 	if (rc == 0) {
