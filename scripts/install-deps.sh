@@ -1,11 +1,13 @@
 #!/bin/sh
-# Installs the Debian 12 packages aalab needs to build, test and run (DESIGN.md, "Dependencies").
+# Installs the Debian 12 packages aalab needs to build, test and run (DESIGN.md, "Dependencies"); clang
+# and its runtime (libFuzzer, the sanitizers) build the fuzz targets of tests/fuzz.
 set -e
 packages="build-essential autoconf automake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libopenimageio-dev openimageio-tools libpng-dev libjansson-dev libassimp-dev libcmocka-dev
   python3 python3-numpy python3-skimage
-  chromium systemd"
+  chromium systemd
+  clang libclang-rt-14-dev"
 missing=""
 for p in $packages; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

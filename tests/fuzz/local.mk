@@ -3,12 +3,31 @@
 # runs them long and keeps a log of executions.
 FUZZ_TARGETS = tests/fuzz/fuzz_protocol tests/fuzz/fuzz_http tests/fuzz/fuzz_job_spec tests/fuzz/fuzz_scene \
 	tests/fuzz/fuzz_mesh tests/fuzz/fuzz_image
-EXTRA_DIST += tests/fuzz/README.md tests/fuzz/corpus \
+EXTRA_DIST += tests/fuzz/README.md tests/fuzz/corpus tests/fuzz/replay.sh \
 	$(patsubst %,%.c,$(FUZZ_TARGETS))
+
+# make check: each target replays its corpus (seeds and the inputs of fixed bugs) without libFuzzer
+REPLAY_CPPFLAGS = $(AM_CPPFLAGS) -I$(srcdir)/daemon
+check_PROGRAMS += tests/fuzz/replay_protocol tests/fuzz/replay_http tests/fuzz/replay_job_spec \
+	tests/fuzz/replay_scene tests/fuzz/replay_mesh tests/fuzz/replay_image
+tests_fuzz_replay_protocol_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_protocol.c daemon/protocol_parse.c
+tests_fuzz_replay_protocol_CPPFLAGS = $(REPLAY_CPPFLAGS)
+tests_fuzz_replay_protocol_LDADD = $(JANSSON_LIBS)
+tests_fuzz_replay_http_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_http.c daemon/http_parse.c
+tests_fuzz_replay_http_CPPFLAGS = $(REPLAY_CPPFLAGS)
+tests_fuzz_replay_job_spec_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_job_spec.c
+tests_fuzz_replay_job_spec_LDADD = $(ENGINE_LIBS)
+tests_fuzz_replay_scene_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_scene.c
+tests_fuzz_replay_scene_LDADD = $(ENGINE_LIBS)
+tests_fuzz_replay_mesh_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_mesh.c
+tests_fuzz_replay_mesh_LDADD = $(ENGINE_LIBS)
+tests_fuzz_replay_image_SOURCES = tests/fuzz/replay.c tests/fuzz/fuzz_image.c
+tests_fuzz_replay_image_LDADD = $(ENGINE_LIBS)
+TESTS += tests/fuzz/replay.sh
 
 if FUZZING
 EXTRA_PROGRAMS = $(FUZZ_TARGETS)
-CLEANFILES += $(FUZZ_TARGETS)
+CLEANFILES += $(FUZZ_TARGETS) fuzz-smoke.log
 FUZZ_LINK = -fsanitize=fuzzer
 FUZZ_CPPFLAGS = $(AM_CPPFLAGS) -I$(srcdir)/daemon
 tests_fuzz_fuzz_protocol_SOURCES = tests/fuzz/fuzz_protocol.c daemon/protocol_parse.c
