@@ -21,6 +21,23 @@ expect_status 0 "a job runs under valgrind" -- "$AALAB" submit --watch --quiet -
 	--scene thin-wires --methods none --frames 1 --size 32x18 --reference-samples 2
 expect_status 0 "list" -- "$AALAB" list --connect "unix:$sock"
 expect_status 0 "get" -- "$AALAB" get 000001 --out "$TMP/got" --connect "unix:$sock"
+# a watch with rgba8 frames (the shared frame cache), a refused payload and HTTP requests that end the
+# connection: the paths that keep or close memory and connections
+port=$(sed -n 's/^aalabd: listening (http) on 127.0.0.1://p' "$TMP/daemon.log")
+expect_status 0 "watch with frames, a bad payload, HTTP close and a bad HTTP request" -- python3 -c '
+import socket, sys
+s = socket.socket(socket.AF_UNIX); s.connect(sys.argv[1]); f = s.makefile("rb")
+s.sendall(b"{\"op\":\"watch\",\"job\":\"000001\",\"frames\":\"rgba8\"}\n")
+while True:
+    line = f.readline()
+    if b"payload" in line:
+        import json; f.read(json.loads(line)["payload"])
+    if b"watch_end" in line: break
+s.sendall(b"{\"op\":\"submit\",\"job\":{},\"payload\":-1}\n"); f.readline()
+for req in (b"GET /healthz HTTP/1.1\r\nHost: a\r\nConnection: close\r\n\r\n", b"GET / HTTP/1.1\r\n\r\n"):
+    h = socket.create_connection(("127.0.0.1", int(sys.argv[2]))); h.sendall(req)
+    while h.recv(4096): pass
+' "$sock" "$port"
 kill -TERM $daemon
 wait $daemon
 status=$?
