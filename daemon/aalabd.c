@@ -327,7 +327,16 @@ int main(int argc, char **argv)
 	}
 	for (int i = 1; i < argc; i++)
 		if (!strcmp(argv[i], "--check")) {
-			printf("aalabd: configuration ok\n");
+			/* the device start-up would open (--device), opened and closed again */
+			struct aa_engine *engine = NULL;
+			struct aa_error aerr = {0};
+			struct aa_engine_options eo = {.device = d->cfg.device[0] ? d->cfg.device : NULL};
+			if (aa_engine_create(&eo, &engine, &aerr)) {
+				fprintf(stderr, "aalabd: device: %s\n", aerr.message);
+				return 2;
+			}
+			printf("aalabd: configuration ok (device %s)\n", aa_engine_device_name(engine));
+			aa_engine_destroy(engine);
 			return 0;
 		}
 	if (!d->cfg.web_dir[0]) {

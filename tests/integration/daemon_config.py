@@ -41,6 +41,8 @@ try:
     check(rc != 0 and "chmod 600" in out, "--check: a token file others can read is not ok")
     rc, out = aalabd_check("--http", "127.0.0.1:notaport")
     check(rc != 0 and "http" in out, "--check: a bad HTTP address is not ok")
+    rc, out = aalabd_check("--device", "no-such-gpu-here")
+    check(rc != 0 and "device" in out, "--check: a device that is not there is not ok (%s)" % out.strip()[:80])
     r = subprocess.run([AALABD, "--socket", os.path.join(tmp, "c.sock"), "--state-dir",
                         os.path.join(token, "state"), "--check"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     check(r.returncode != 0 and b"state-dir" in r.stdout, "--check: a state folder that cannot be created is not ok")
