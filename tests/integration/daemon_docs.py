@@ -199,7 +199,9 @@ try:
     check(r.get("error", {}).get("message") == m.group(1), "%s:%s is refused as documented (%s)" %
           (m.group(2), m.group(3), r.get("error")))
 
-    # a cancelled job keeps the done of its last frame event
+    # a cancelled job keeps the done of its last frame event (cancelled once it has rendered frames)
+    while c.request({"op": "status", "job": blocker})["job"]["done"] < 2:
+        time.sleep(0.05)
     c.request({"op": "cancel", "job": blocker})
     st = wait_state(c, blocker, ["cancelled"])
     events, end = c.watch(blocker)
