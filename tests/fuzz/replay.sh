@@ -10,4 +10,9 @@ for name in protocol http job_spec scene mesh image; do
 		fail "sanitizer report from $name:"; head -30 "$TMP/err"
 	fi
 done
+# the bug fuzz_image found: a BMP whose compression does not fit its depth crashed OpenImageIO 2.4 in
+# `aalab diff`; it is refused with a message (the corpus input without its first, selector, byte)
+tail -c +2 "$top_srcdir/tests/fuzz/corpus/image/crash-bmp-rle8-24bpp" >"$TMP/bad.bmp"
+expect_status 2 "aalab diff refuses a BMP with RLE8 at 24 bits per pixel" -- "$AALAB" diff "$TMP/bad.bmp" "$TMP/bad.bmp"
+expect_stderr "not valid BMP" "and says why"
 finish
