@@ -3,7 +3,7 @@
 # runs them long and keeps a log of executions.
 FUZZ_TARGETS = tests/fuzz/fuzz_protocol tests/fuzz/fuzz_http tests/fuzz/fuzz_job_spec tests/fuzz/fuzz_scene \
 	tests/fuzz/fuzz_mesh tests/fuzz/fuzz_image
-EXTRA_DIST += tests/fuzz/README.md tests/fuzz/corpus tests/fuzz/replay.sh \
+EXTRA_DIST += tests/fuzz/README.md tests/fuzz/corpus tests/fuzz/replay.sh bench/fuzz bench/fuzz-runs.tsv \
 	$(patsubst %,%.c,$(FUZZ_TARGETS))
 
 # make check: each target replays its corpus (seeds and the inputs of fixed bugs) without libFuzzer
