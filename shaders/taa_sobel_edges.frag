@@ -2,10 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // Master TAA's edge image (seed 001, eq. 4.9-4.10): Sobel magnitudes of the unlit luma u, the lit luma l
 // and the linear depth d, mixed as g = clamp01(0.3 u + 0.7 l + d), then sobel = sqrt(g^2 (3 - 2g)).
+// With `tonemapped` (preset=converge) the lit luma is L / (1 + L), as the resolve sees colour: on HDR
+// values the linear luma's gradient saturates g everywhere a bright light falls, and every pixel would
+// count as an edge. Seed 001 rendered LDR and used the lit luma as is (preset=seed001).
 #include "taa_common.glsl"
 
 layout(set = 0, binding = 0) uniform sampler2D current; // lit colour
 layout(set = 0, binding = 1) uniform sampler2D surface; // unlit luma, linear depth
+layout(push_constant) uniform Push { int tonemapped; } push;
 layout(location = 0) out float out_sobel;
 
 void main()
@@ -20,6 +24,8 @@ void main()
 			ivec2 q = clamp(p + ivec2(x, y), ivec2(0), last);
 			vec3 c = texelFetch(current, q, 0).rgb;
 			float lit = finite3(c) ? dot(c, vec3(0.2126, 0.7152, 0.0722)) : 0.0;
+			if (push.tonemapped != 0)
+				lit = lit / (1.0 + max(lit, 0.0));
 			vec2 s = texelFetch(surface, q, 0).xy;
 			vec3 v = vec3(s.x, lit, s.y);
 			int k = (y + 1) * 3 + (x + 1);

@@ -8,7 +8,7 @@
 
 #include "../error.h"
 
-#define AA_MAX_PARAMS 8
+#define AA_MAX_PARAMS 12
 
 enum aa_param_type { AA_PARAM_INT, AA_PARAM_FLOAT, AA_PARAM_ENUM, AA_PARAM_BOOL };
 

@@ -1,5 +1,6 @@
-/* The machinery shared by `taa` (seed 001's baseline) and `taa-sobel` (its "Master TAA"): a G-buffer
- * scene pass with Halton jitter, the resolve into float history, and the display sharpen. */
+/* The machinery shared by `taa` and `taa-sobel`: a G-buffer scene pass with Halton jitter, the resolve
+ * into float history, and the display sharpen. Two resolves: seed 001's (preset=seed001) and the one
+ * that converges (preset=converge, the default; shaders/taa_converge.glsl). */
 #ifndef AA_TAA_IMPL_H
 #define AA_TAA_IMPL_H
 
@@ -7,12 +8,21 @@
 #include "method.h"
 
 enum aa_taa_sharpen { AA_TAA_SHARPEN_OFF, AA_TAA_SHARPEN_ORIGINAL, AA_TAA_SHARPEN_NORMALIZED };
+enum aa_taa_preset { AA_TAA_PRESET_CONVERGE, AA_TAA_PRESET_SEED001 };
+enum aa_taa_history_filter { AA_TAA_HISTORY_BILINEAR, AA_TAA_HISTORY_CATMULL_ROM };
+enum aa_taa_clip { AA_TAA_CLIP_AABB, AA_TAA_CLIP_VARIANCE };
 
 struct aa_taa_config {
 	bool master;           /* Sobel/ID/depth clip box (taa-sobel) */
+	enum aa_taa_preset preset;
 	int jitter_length;     /* Halton(2,3) points per cycle */
 	float feedback_min, feedback_max;
 	enum aa_taa_sharpen sharpen;
+	/* preset=converge only */
+	enum aa_taa_history_filter history_filter;
+	enum aa_taa_clip clip;
+	float gamma;           /* variance clip: mean +- gamma * sigma */
+	int max_samples;       /* cap on the per-pixel sample count of still pixels */
 };
 
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,

@@ -1,0 +1,364 @@
+// TAA resolve that converges (preset=converge, the default of taa and taa-sobel; docs/methods.md).
+// Differences from seed 001's resolve (taa_resolve.glsl), each for a measured failure of it:
+// - the current frame is reconstructed at the pixel centre from the jittered 3x3 samples with the
+//   Gaussian fit of Blackman-Harris (Karis 2014, UE4: sigma 0.47 px), so it is not shifted by the jitter;
+// - neighbourhood, clip and blend work on tonemapped colour c / (1 + luma) (Karis's HDR weighting) in
+//   YCoCg, inverted afterwards, so a bright sample cannot widen the clip box to everything;
+// - history read under motion with a Catmull-Rom filter (Falcor, HDRP) or bilinearly; clip box from
+//   min/max (AABB, seed 001) or Salvi's variance;
+// - a pixel that has been still for a whole jitter cycle is settled: its history is the mean of its own
+//   jittered samples (each an unbiased sample of the box filter the reference uses) in linear light,
+//   taken over whole cycles, so a still image converges instead of following the jitter; a cycle's mean
+//   is folded in with weight cycle/(count + cycle), the count growing to max_samples. A settled pixel is
+//   not clipped: the 3x3 neighbourhood cannot tell a sub-pixel wire that this frame's samples miss from
+//   stale history. It starts over when its own sample differs from the one at the same jitter position a
+//   cycle earlier: on a still pixel of a deterministic renderer only a change of the scene does that.
+// Included by taa_converge.comp (MASTER_TAA 0) and taa_master_converge.comp (MASTER_TAA 1, taa-sobel's box).
+#include "taa_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D current;  // jittered scene colour (nearest)
+layout(set = 0, binding = 1) uniform sampler2D history;  // previous output: linear rgb, a = sample count
+layout(set = 0, binding = 2) uniform sampler2D run;      // still pixels: mean of this cycle's own samples,
+                                                         // a = frames still (the run's length)
+layout(set = 0, binding = 3) uniform sampler2D velocity; // pixels, current - previous (nearest)
+layout(set = 0, binding = 4) uniform sampler2D surface;  // unlit luma, linear depth (nearest)
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D history_out;
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D run_out;
+// still pixels: the tonemapped luma of the own sample at each jitter position, 8 bits each, updated in
+// place (each invocation touches its own texel only)
+layout(set = 0, binding = 7, rgba32ui) uniform uimage2D positions;
+#if MASTER_TAA
+layout(set = 0, binding = 8) uniform usampler2D ids;     // model IDs
+layout(set = 0, binding = 9) uniform sampler2D sobel;    // this frame's stabilised Sobel image
+layout(set = 0, binding = 10) uniform sampler2D past_depth; // linear depth of the previous frame
+layout(set = 0, binding = 11, r32f) uniform writeonly image2D depth_out;
+#endif
+
+layout(push_constant) uniform Push {
+	vec2 jitter;          // this frame's jitter in pixels: the geometry moved by +jitter
+	ivec2 size;
+	float feedback_min, feedback_max; // history weight bounds (seed 001's feedback law)
+	float gamma;          // variance clip: the box is mean +- gamma * sigma (Salvi)
+	float max_samples;    // cap on the sample count of settled pixels
+	int cycle;            // jitter positions per cycle (8 or 16)
+	int jitter_index;     // this frame's position in the cycle
+	int history_valid;    // 0 on the first frame after a reset
+	int clip_variance;    // 0: AABB (3x3 and cross min/max averaged, as seed 001), 1: variance
+	int catmull_rom;      // history read under motion: 0 bilinear, 1 Catmull-Rom
+} pc;
+
+// A settled pixel's own sample differing from the one at the same position a cycle ago by more than
+// this many 8-bit steps of tonemapped luma is a change of the scene (rounding gives 1).
+const uint CHANGE_STEPS = 4u;
+// A cycle mean further than this (tonemapped YCoCg) from history replaces it instead of being folded in.
+const float CHANGE = 0.02;
+// Width of the current frame's reconstruction filter relative to UE4's Gaussian fit of Blackman-Harris
+// (exp(-2.29 d^2), sigma 0.47 px): 0.7 (sigma 0.33 px) measured best against the box-filtered reference
+// (moving-sphere, 320x180, 60 frames: mean PSNR 23.97 dB at 1.0, 24.19 at 0.7, 24.23 at 0.5, but frame 0
+// at 0.5 falls to 0.5 dB over none, from 0.8 at 0.7).
+const float FILTER_WIDTH = 0.7;
+// Below this many pixels of motion a pixel counts as still (rounding of equal matrices gives ~0).
+const float STILL_PIXELS = 0.01;
+
+float luma709(vec3 c)
+{
+	return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// Karis's tonemap c / (1 + luma) and its inverse: the luma of the result stays below 1, so the inverse
+// exists; the floor bounds it at the half-float range the scene colour has.
+vec3 tonemap(vec3 c)
+{
+	return c / (1.0 + luma709(c));
+}
+
+vec3 tonemap_inverse(vec3 t)
+{
+	t = max(t, vec3(0.0));
+	return t / max(1.0 - luma709(t), 1.0 / 65504.0);
+}
+
+vec3 to_working(vec3 linear)
+{
+	return rgb_to_ycocg(tonemap(linear));
+}
+
+vec3 from_working(vec3 w)
+{
+	return min(tonemap_inverse(ycocg_to_rgb(w)), vec3(65504.0));
+}
+
+// History at pixel position pos (texel units) with the Catmull-Rom filter: the 4x4 texel weights are
+// separable, and each axis's two middle weights share one bilinear fetch, so 3x3 bilinear fetches give
+// the 16-texel filter exactly. Its negative lobes overshoot at edges, by a tenth of an HDR contrast of
+// hundreds: the result is clamped to the range of the four texels around pos (HDRP's anti-ringing).
+vec3 history_catmull_rom(vec2 pos)
+{
+	vec2 size = vec2(pc.size);
+	vec2 base = floor(pos - 0.5) + 0.5; // the texel centre at or before pos on each axis
+	vec2 f = pos - base;
+	vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+	vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+	vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+	vec2 w3 = f * f * (-0.5 + 0.5 * f);
+	vec2 w12 = w1 + w2;
+	vec2 at[3] = vec2[](base - 1.0, base + w2 / w12, base + 2.0);
+	vec2 w[3] = vec2[](w0, w12, w3);
+	vec3 sum = vec3(0.0);
+	float weight = 0.0;
+	for (int j = 0; j < 3; j++)
+		for (int i = 0; i < 3; i++) {
+			float wij = w[i].x * w[j].y;
+			sum += wij * textureLod(history, vec2(at[i].x, at[j].y) / size, 0.0).rgb;
+			weight += wij;
+		}
+	ivec2 corner = ivec2(floor(base)), last = pc.size - 1;
+	vec3 lo = vec3(1e30), hi = vec3(-1e30);
+	for (int j = 0; j < 2; j++)
+		for (int i = 0; i < 2; i++) {
+			vec3 t = texelFetch(history, clamp(corner + ivec2(i, j), ivec2(0), last), 0).rgb;
+			lo = min(lo, t);
+			hi = max(hi, t);
+		}
+	return clamp(sum / weight, lo, hi);
+}
+
+// History colour weight under motion: seed 001's luminance feedback, as a cap on the sample count
+// (history weight k means the new frame counts at least 1 - k).
+float motion_sample_cap(float y_current, float y_history)
+{
+	float k = feedback(y_current, y_history, pc.feedback_min, pc.feedback_max);
+	return 1.0 / max(1.0 - k, 1e-3);
+}
+
+
+// The 3x3 neighbourhood in the working space.
+struct Neighbourhood {
+	vec3 filtered;               // reconstruction at the pixel centre
+	vec3 box_min, box_max;       // the clip box (3x3 and cross combined, or variance)
+	vec3 min3, max3, minx, maxx; // taa-sobel mixes the 3x3 and cross boxes itself
+	ivec2 closest_at;            // the pixel of the closest depth (its velocity is used)
+	float dsum, dmin, dmax, model_diff;
+	bool any_finite;
+};
+
+Neighbourhood gather(ivec2 p)
+{
+	ivec2 last = pc.size - 1;
+	Neighbourhood nb;
+	vec3 mn3 = vec3(1e30), mx3 = vec3(-1e30), mnx = vec3(1e30), mxx = vec3(-1e30);
+	vec3 sum3 = vec3(0.0), sq3 = vec3(0.0), sumx = vec3(0.0), sqx = vec3(0.0), filtered = vec3(0.0);
+	float n3 = 0.0, nx = 0.0, filter_weight = 0.0, closest = 1e30;
+	nb.closest_at = p;
+	nb.dsum = 0.0;
+	nb.dmin = 1e30;
+	nb.dmax = -1e30;
+	nb.model_diff = 0.0;
+#if MASTER_TAA
+	uint id_centre = texelFetch(ids, p, 0).r;
+#endif
+	for (int y = -1; y <= 1; y++)
+		for (int x = -1; x <= 1; x++) {
+			ivec2 q = clamp(p + ivec2(x, y), ivec2(0), last);
+			float depth = texelFetch(surface, q, 0).y;
+			if (depth < closest) {
+				closest = depth;
+				nb.closest_at = q;
+			}
+			nb.dsum += depth;
+			nb.dmin = min(nb.dmin, depth);
+			nb.dmax = max(nb.dmax, depth);
+#if MASTER_TAA
+			if (texelFetch(ids, q, 0).r != id_centre)
+				nb.model_diff += 1.0;
+#endif
+			vec3 c = texelFetch(current, q, 0).rgb;
+			if (!finite3(c)) // non-finite samples are left out: they must not reach history
+				continue;
+			c = to_working(clamp(c, vec3(0.0), vec3(65504.0)));
+			// the sample of pixel q shows the scene at q's centre - jitter: its distance from this centre
+			vec2 d = (vec2(x, y) - pc.jitter) / FILTER_WIDTH;
+			float w = exp(-2.29 * dot(d, d));
+			filtered += w * c;
+			filter_weight += w;
+			mn3 = min(mn3, c);
+			mx3 = max(mx3, c);
+			sum3 += c;
+			sq3 += c * c;
+			n3 += 1.0;
+			if (x == 0 || y == 0) {
+				mnx = min(mnx, c);
+				mxx = max(mxx, c);
+				sumx += c;
+				sqx += c * c;
+				nx += 1.0;
+			}
+		}
+	nb.any_finite = n3 > 0.0;
+	if (!nb.any_finite)
+		return nb;
+	if (nx == 0.0) {
+		mnx = mn3;
+		mxx = mx3;
+		sumx = sum3;
+		sqx = sq3;
+		nx = n3;
+	}
+	nb.filtered = filtered / filter_weight;
+	if (pc.clip_variance != 0) { // Salvi: mean +- gamma sigma
+		vec3 mean3 = sum3 / n3, sigma3 = sqrt(max(sq3 / n3 - mean3 * mean3, vec3(0.0)));
+		vec3 meanx = sumx / nx, sigmax = sqrt(max(sqx / nx - meanx * meanx, vec3(0.0)));
+		nb.min3 = mean3 - pc.gamma * sigma3;
+		nb.max3 = mean3 + pc.gamma * sigma3;
+		nb.minx = meanx - pc.gamma * sigmax;
+		nb.maxx = meanx + pc.gamma * sigmax;
+		nb.box_min = nb.min3;
+		nb.box_max = nb.max3;
+	} else { // seed 001 / INSIDE: 3x3 and cross min/max, averaged
+		nb.min3 = mn3;
+		nb.max3 = mx3;
+		nb.minx = mnx;
+		nb.maxx = mxx;
+		nb.box_min = 0.5 * (mn3 + mnx);
+		nb.box_max = 0.5 * (mx3 + mxx);
+	}
+	return nb;
+}
+
+#if MASTER_TAA
+// seed 001's Master TAA: the box chosen between cross and 3x3 and shrunk toward the current colour by
+// aliasedValue (model IDs, depth pseudo-variances, the stabilised Sobel image)
+void master_box(inout Neighbourhood nb, ivec2 p, float depth, float past_depth, bool valid)
+{
+	ivec2 last = pc.size - 1;
+	float model_average = nb.model_diff / 9.0;
+	float davg = nb.dsum / 9.0;
+	float max_depth_distance = min(abs(nb.dmin - davg), abs(nb.dmax - davg));
+	float dpv = 0.0, dtpv = 0.0;
+	if (max_depth_distance >= 0.002) {
+		dpv = pow(abs(depth - davg) / max_depth_distance, 2.0);
+		if (valid)
+			dtpv = pow(abs(past_depth - davg) / max_depth_distance, 4.0);
+	}
+	float s = texelFetch(sobel, p, 0).r, s3 = 0.0, sx = 0.0;
+	for (int y = -1; y <= 1; y++)
+		for (int x = -1; x <= 1; x++) {
+			float e = texelFetch(sobel, clamp(p + ivec2(x, y), ivec2(0), last), 0).r;
+			s3 += e;
+			if (x == 0 || y == 0)
+				sx += e;
+		}
+	float mix_value = clamp(model_average + s, 0.0, 1.0);
+	float sobel_avg = mix(sx / 5.0, s3 / 9.0, mix_value);
+	float aliased = clamp(sobel_avg + dpv + dtpv + model_average, 0.0, 1.0);
+	nb.box_min = mix(nb.filtered, mix(nb.minx, nb.min3, aliased), aliased);
+	nb.box_max = mix(nb.filtered, mix(nb.maxx, nb.max3, aliased), aliased);
+}
+#endif
+
+bool finite4(vec4 v)
+{
+	return !any(isnan(v)) && !any(isinf(v));
+}
+
+// The 8-bit tonemapped luma of the own sample at jitter position i, and its update.
+uint position_luma(uvec4 t, int i)
+{
+	return (t[i >> 2] >> (8 * (i & 3))) & 0xffu;
+}
+
+uvec4 with_position_luma(uvec4 t, int i, uint value)
+{
+	uint shift = 8u * uint(i & 3);
+	t[i >> 2] = (t[i >> 2] & ~(0xffu << shift)) | (value << shift);
+	return t;
+}
+
+void main()
+{
+	ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+	if (any(greaterThanEqual(p, pc.size)))
+		return;
+	ivec2 last = pc.size - 1;
+	vec2 size = vec2(pc.size);
+	vec2 centre = vec2(p) + 0.5;
+	float depth = texelFetch(surface, p, 0).y;
+#if MASTER_TAA
+	imageStore(depth_out, p, vec4(depth));
+#endif
+
+	Neighbourhood nb = gather(p);
+	if (!nb.any_finite) { // every sample poisoned: write finite black rather than keep any of it
+		imageStore(history_out, p, vec4(0.0, 0.0, 0.0, 1.0));
+		imageStore(run_out, p, vec4(0.0));
+		return;
+	}
+	vec3 own = texelFetch(current, p, 0).rgb;
+	own = finite3(own) ? clamp(own, vec3(0.0), vec3(65504.0)) : from_working(nb.filtered);
+	uint own_luma = uint(luma709(tonemap(own)) * 255.0 + 0.5);
+
+	vec2 v = texelFetch(velocity, nb.closest_at, 0).xy;
+	vec2 uv;
+	bool valid = pc.history_valid != 0 && history_position(centre, v, size, uv);
+	bool still = all(lessThan(abs(v), vec2(STILL_PIXELS))); // NaN velocity: not still, not valid
+	ivec2 from = clamp(ivec2(floor(centre - v)), ivec2(0), last);
+	vec4 past = valid ? texelFetch(history, from, 0) : vec4(0.0);
+	vec4 past_run = valid ? texelFetch(run, from, 0) : vec4(0.0);
+	vec3 h = past.rgb;
+	if (valid && !still)
+		h = pc.catmull_rom != 0 ? history_catmull_rom(centre - v) : textureLod(history, uv, 0.0).rgb;
+	valid = valid && finite3(h) && finite4(past) && past.a >= 1.0 && finite4(past_run);
+	h = clamp(h, vec3(0.0), vec3(65504.0));
+#if MASTER_TAA
+	master_box(nb, p, depth, valid ? texelFetch(past_depth, from, 0).r : depth, valid);
+#endif
+	vec3 box_centre = 0.5 * (nb.box_min + nb.box_max);
+
+	// A still pixel's run: how many frames it has been still, the mean of its own samples since the
+	// last whole cycle, and the lumas of its own samples by jitter position (valid once a whole cycle
+	// is in them).
+	float run_length = valid && still ? past_run.a : 0.0;
+	vec3 cycle_mean = run_length > 0.0 ? past_run.rgb : vec3(0.0);
+	float cycle = float(pc.cycle);
+	uvec4 lumas = still ? imageLoad(positions, p) : uvec4(0u);
+	if (run_length >= cycle) {
+		uint before = position_luma(lumas, pc.jitter_index);
+		if (max(own_luma, before) - min(own_luma, before) > CHANGE_STEPS)
+			run_length = 0.0; // the scene changed here: start over, history as one clipped sample
+	}
+	bool settled = run_length >= cycle;
+
+	float n = past.a;
+	if (!valid) {
+		h = from_working(nb.filtered);
+		n = 1.0;
+	} else if (!settled) {
+		// moving, or still for less than a whole cycle: seed 001's clip and feedback on the filtered
+		// current colour; history that had to start over counts as one sample
+		vec3 w = clip_toward(to_working(h), box_centre, nb.box_min, nb.box_max);
+		if (still && run_length == 0.0 && past_run.a >= cycle)
+			n = 1.0;
+		n = min(n + 1.0, motion_sample_cap(nb.filtered.x, w.x));
+		h = from_working(mix(w, nb.filtered, 1.0 / n));
+	}
+	if (still) {
+		run_length += 1.0;
+		float in_cycle = mod(run_length - 1.0, cycle) + 1.0; // this sample's place in its cycle, 1..cycle
+		cycle_mean = in_cycle == 1.0 ? own : mix(cycle_mean, own, 1.0 / in_cycle);
+		lumas = with_position_luma(lumas, pc.jitter_index, own_luma);
+		if (in_cycle == cycle) {
+			// A whole cycle: its mean replaces history when the pixel settles or the mean moved away from
+			// history (a change the per-position test missed), and is folded into it otherwise.
+			bool replace = run_length == cycle || distance(to_working(cycle_mean), to_working(h)) > CHANGE;
+			h = replace ? cycle_mean : mix(h, cycle_mean, cycle / (n + cycle));
+			n = replace ? min(cycle, pc.max_samples) : min(n + cycle, pc.max_samples);
+		}
+		imageStore(positions, p, lumas);
+	}
+	// run lengths past two cycles carry no more information
+	run_length = run_length >= 2.0 * cycle ? run_length - cycle : run_length;
+	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
+	imageStore(history_out, p, vec4(h, n));
+	imageStore(run_out, p, vec4(cycle_mean, run_length));
+}
