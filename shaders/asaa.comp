@@ -18,7 +18,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform sampler2D current;      // this frame's sample (jittered render)
 layout(set = 0, binding = 1) uniform sampler2D velocity;     // RG16F, pixels, current - previous
 layout(set = 0, binding = 2) uniform sampler2D surface;      // RG32F: unlit luma, linear depth
-layout(set = 0, binding = 3) uniform sampler2D buffers[4];   // rgb, linear depth of the sample (bilinear)
+layout(set = 0, binding = 3) uniform sampler2D buffers[4];   // rgb, log2 linear depth of the sample (bilinear)
 layout(set = 0, binding = 4) uniform sampler2D motion_a;     // displacement to buffers of age 1 (xy), 2 (zw)
 layout(set = 0, binding = 5) uniform sampler2D motion_b;     // age 3 (xy), samples N (z), still frames (w)
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D updated;   // new contents of buffer index
@@ -112,11 +112,11 @@ void main()
 		float wb, wf;
 		vec4 b = tent_fetch(k, previous + phi_i - phi_k, rb, wb);  // Eq. 3.23
 		vec4 f = tent_fetch(k, previous - phi_k, rf, wf);          // Eq. 3.27
-		if (wb > 0.0 && all_finite(b.rgb) && !(depth_test && disoccluded(depth, b.w))) {
+		if (wb > 0.0 && all_finite(b.rgb) && !(depth_test && disoccluded(depth, depth_decode(b.w)))) {
 			cb += wb * b.rgb;
 			wb_sum += wb;
 		}
-		if (wf > 0.0 && all_finite(f.rgb) && !(depth_test && disoccluded(depth, f.w))) {
+		if (wf > 0.0 && all_finite(f.rgb) && !(depth_test && disoccluded(depth, depth_decode(f.w)))) {
 			cf += wf * f.rgb;
 			wf_sum += wf;
 		}
@@ -141,7 +141,7 @@ void main()
 
 	float n_next = min(n + 1.0, 4.0 * pc.max_samples + 3.0);
 
-	imageStore(updated, p, vec4(clamp(buffer_value, vec3(0.0), vec3(65504.0)), min(depth, 65000.0)));
+	imageStore(updated, p, vec4(clamp(buffer_value, vec3(0.0), vec3(65504.0)), depth_encode(depth)));
 	imageStore(frame_out, p, vec4(clamp(frame, vec3(0.0), vec3(65504.0)), 1.0));
 	// next frame's ages 2, 3, 4 are this frame's 1, 2, 3
 	vec2 d0 = valid[0] ? displacement[0] : vec2(NO_HISTORY);

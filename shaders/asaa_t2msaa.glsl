@@ -51,6 +51,21 @@ vec3 finite_sample(sampler2D img, ivec2 p, ivec2 size)
 	return n > 0.0 ? sum / n : vec3(0.0);
 }
 
+// Depth kept in half-float history as log2(depth): half floats end at 65504, and a clamp there made
+// every surface beyond it fail the disocclusion test against the clamped value (nothing past ~70,000
+// units accumulated). In log2 the half float's 11-bit mantissa keeps depth to 0.5% up to 2^32 units,
+// far inside the 8% the test allows; bilinear reads interpolate it geometrically, which the test does
+// not notice either.
+float depth_encode(float depth)
+{
+	return log2(max(depth, 1e-30));
+}
+
+float depth_decode(float stored)
+{
+	return exp2(stored);
+}
+
 // Linear view depth of the G-buffer's surface target (.y); non-finite or non-positive depths become the
 // largest finite value, which no depth test accepts as "nearer".
 float surface_depth(sampler2D surface, ivec2 p)

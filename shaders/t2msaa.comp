@@ -13,7 +13,7 @@ layout(set = 0, binding = 1) uniform sampler2D sample1;      // virtual sample 1
 layout(set = 0, binding = 2) uniform sampler2D velocity;     // RG16F, pixels, current - previous
 layout(set = 0, binding = 3) uniform sampler2D surface;      // RG32F: unlit luma, linear depth
 layout(set = 0, binding = 4) uniform sampler2D history;      // previous frame (bilinear)
-layout(set = 0, binding = 5) uniform sampler2D state;        // previous: linear depth, samples N, still
+layout(set = 0, binding = 5) uniform sampler2D state;        // previous: log2 linear depth, samples N, still
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D history_out;
 layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D state_out;
 
@@ -21,14 +21,17 @@ layout(push_constant) uniform Push {
 	ivec2 size;
 	float max_samples;
 	int history_valid; // 0 on the first frame after a reset: nothing to reproject
+	int blur_uv;       // blur threshold from |velocity| in UV units (the thesis's code), not pixel fractions
 } pc;
 
-// Listing 4.19 with the fractional velocity of Eq. 3.31: the blur bilinear resampling adds depends on
-// where the previous position falls between texels, not on how many whole pixels it moved (the thesis
-// used |velocity| in UV units, which is close to the fraction for motions under a pixel).
+// Listing 4.19. pc.blur_uv 0: with the fractional part of the velocity in pixels, Eq. 3.31's meaning
+// (the blur bilinear resampling adds depends on where the previous position falls between texels, not
+// on how many whole pixels it moved). pc.blur_uv 1: as the thesis's code, |velocity| in UV units, which
+// for a motion under a pixel is 1/width (1/height) of the pixel fraction: its threshold stays near
+// sigma^2 = 0.25 at any speed the view can show.
 float blur_threshold(float a, vec2 v)
 {
-	vec2 f = fract(abs(v));
+	vec2 f = pc.blur_uv != 0 ? min(abs(v) / vec2(pc.size), vec2(1.0)) : fract(abs(v));
 	float spread = (f.x * (1.0 - f.x) + f.y * (1.0 - f.y)) * 0.5;
 	return clamp(0.5 * 0.5 + ((1.0 - a) / a) * spread, 0.0, 1.0);
 }
@@ -52,7 +55,7 @@ void main()
 	if (hit) {
 		vec2 uv = q / size;
 		previous = textureLod(history, uv, 0.0).rgb;
-		float previous_depth = textureLod(state, uv, 0.0).x;
+		float previous_depth = depth_decode(textureLod(state, uv, 0.0).x);
 		// the count where the pixel came from (Eq. 3.29 reprojects it too), nearest texel
 		vec4 st = texelFetch(state, clamp(ivec2(floor(q)), ivec2(0), pc.size - 1), 0);
 		samples = st.y;
@@ -79,5 +82,5 @@ void main()
 	}
 	imageStore(history_out, p, vec4(frame, 1.0));
 	float still_now = hit && !moving ? min(still_before + 1.0, 8.0) : 0.0;
-	imageStore(state_out, p, vec4(min(depth, 65000.0), samples, still_now, 0.0));
+	imageStore(state_out, p, vec4(depth_encode(depth), samples, still_now, 0.0));
 }

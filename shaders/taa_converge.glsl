@@ -2,8 +2,10 @@
 // Differences from seed 001's resolve (taa_resolve.glsl), each for a measured failure of it:
 // - the current frame is reconstructed at the pixel centre from the jittered 3x3 samples with the
 //   Gaussian fit of Blackman-Harris (Karis 2014, UE4: sigma 0.47 px), so it is not shifted by the jitter;
-// - neighbourhood, clip and blend work on tonemapped colour c / (1 + luma) (Karis's HDR weighting) in
-//   YCoCg, inverted afterwards, so a bright sample cannot widen the clip box to everything;
+// - the clip box and the clip work on tonemapped colour c / (1 + luma) (Karis's HDR weighting) in YCoCg,
+//   inverted afterwards, so a bright sample cannot widen the box to hold any stale history; the blend
+//   stays linear, as the reference averages: blended in tonemapped space, a few percent of floor gave a
+//   bright ball's pixels the floor's colour (inverting the tonemap multiplies them by 1 + luma);
 // - history read under motion with a Catmull-Rom filter (Falcor, HDRP) or bilinearly; clip box from
 //   min/max (AABB, seed 001) or Salvi's variance;
 // - a pixel that has been still for a whole jitter cycle is settled: its history is the mean of its own
@@ -46,6 +48,7 @@ layout(push_constant) uniform Push {
 	int history_valid;    // 0 on the first frame after a reset
 	int clip_variance;    // 0: AABB (3x3 and cross min/max averaged, as seed 001), 1: variance
 	int catmull_rom;      // history read under motion: 0 bilinear, 1 Catmull-Rom
+	int clip_linear;      // clip in linear YCoCg instead of tonemapped YCoCg
 } pc;
 
 // A settled pixel's own sample differing from the one at the same position a cycle ago by more than
@@ -79,14 +82,16 @@ vec3 tonemap_inverse(vec3 t)
 	return t / max(1.0 - luma709(t), 1.0 / 65504.0);
 }
 
+// The working space of the clip box: tonemapped YCoCg, or linear YCoCg with clip_space=linear.
 vec3 to_working(vec3 linear)
 {
-	return rgb_to_ycocg(tonemap(linear));
+	return rgb_to_ycocg(pc.clip_linear != 0 ? linear : tonemap(linear));
 }
 
 vec3 from_working(vec3 w)
 {
-	return min(tonemap_inverse(ycocg_to_rgb(w)), vec3(65504.0));
+	vec3 rgb = ycocg_to_rgb(w);
+	return pc.clip_linear != 0 ? clamp(rgb, vec3(0.0), vec3(65504.0)) : min(tonemap_inverse(rgb), vec3(65504.0));
 }
 
 // History at pixel position pos (texel units) with the Catmull-Rom filter: the 4x4 texel weights are
@@ -135,7 +140,8 @@ float motion_sample_cap(float y_current, float y_history)
 
 // The 3x3 neighbourhood in the working space.
 struct Neighbourhood {
-	vec3 filtered;               // reconstruction at the pixel centre
+	vec3 filtered;               // reconstruction at the pixel centre, linear
+	vec3 filtered_working;       // the same in the working space
 	vec3 box_min, box_max;       // the clip box (3x3 and cross combined, or variance)
 	vec3 min3, max3, minx, maxx; // taa-sobel mixes the 3x3 and cross boxes itself
 	ivec2 closest_at;            // the pixel of the closest depth (its velocity is used)
@@ -176,11 +182,12 @@ Neighbourhood gather(ivec2 p)
 			vec3 c = texelFetch(current, q, 0).rgb;
 			if (!finite3(c)) // non-finite samples are left out: they must not reach history
 				continue;
-			c = to_working(clamp(c, vec3(0.0), vec3(65504.0)));
+			c = clamp(c, vec3(0.0), vec3(65504.0));
 			// the sample of pixel q shows the scene at q's centre - jitter: its distance from this centre
 			vec2 d = (vec2(x, y) - pc.jitter) / FILTER_WIDTH;
 			float w = exp(-2.29 * dot(d, d));
 			filtered += w * c;
+			c = to_working(c);
 			filter_weight += w;
 			mn3 = min(mn3, c);
 			mx3 = max(mx3, c);
@@ -206,6 +213,7 @@ Neighbourhood gather(ivec2 p)
 		nx = n3;
 	}
 	nb.filtered = filtered / filter_weight;
+	nb.filtered_working = to_working(nb.filtered);
 	if (pc.clip_variance != 0) { // Salvi: mean +- gamma sigma
 		vec3 mean3 = sum3 / n3, sigma3 = sqrt(max(sq3 / n3 - mean3 * mean3, vec3(0.0)));
 		vec3 meanx = sumx / nx, sigmax = sqrt(max(sqx / nx - meanx * meanx, vec3(0.0)));
@@ -252,8 +260,8 @@ void master_box(inout Neighbourhood nb, ivec2 p, float depth, float past_depth, 
 	float mix_value = clamp(model_average + s, 0.0, 1.0);
 	float sobel_avg = mix(sx / 5.0, s3 / 9.0, mix_value);
 	float aliased = clamp(sobel_avg + dpv + dtpv + model_average, 0.0, 1.0);
-	nb.box_min = mix(nb.filtered, mix(nb.minx, nb.min3, aliased), aliased);
-	nb.box_max = mix(nb.filtered, mix(nb.maxx, nb.max3, aliased), aliased);
+	nb.box_min = mix(nb.filtered_working, mix(nb.minx, nb.min3, aliased), aliased);
+	nb.box_max = mix(nb.filtered_working, mix(nb.maxx, nb.max3, aliased), aliased);
 }
 #endif
 
@@ -295,7 +303,7 @@ void main()
 		return;
 	}
 	vec3 own = texelFetch(current, p, 0).rgb;
-	own = finite3(own) ? clamp(own, vec3(0.0), vec3(65504.0)) : from_working(nb.filtered);
+	own = finite3(own) ? clamp(own, vec3(0.0), vec3(65504.0)) : nb.filtered;
 	uint own_luma = uint(luma709(tonemap(own)) * 255.0 + 0.5);
 
 	vec2 v = texelFetch(velocity, nb.closest_at, 0).xy;
@@ -331,7 +339,7 @@ void main()
 
 	float n = past.a;
 	if (!valid) {
-		h = from_working(nb.filtered);
+		h = nb.filtered;
 		n = 1.0;
 	} else if (!settled) {
 		// moving, or still for less than a whole cycle: seed 001's clip and feedback on the filtered
@@ -339,8 +347,8 @@ void main()
 		vec3 w = clip_toward(to_working(h), box_centre, nb.box_min, nb.box_max);
 		if (still && run_length == 0.0 && past_run.a >= cycle)
 			n = 1.0;
-		n = min(n + 1.0, motion_sample_cap(nb.filtered.x, w.x));
-		h = from_working(mix(w, nb.filtered, 1.0 / n));
+		n = min(n + 1.0, motion_sample_cap(nb.filtered_working.x, w.x));
+		h = mix(from_working(w), nb.filtered, 1.0 / n);
 	}
 	if (still) {
 		run_length += 1.0;

@@ -23,6 +23,13 @@ tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c $(GP
 tests_integration_test_temporal_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_temporal_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_temporal
+
+# jitter through the real renderer: quads at two depths move by the same sub-pixel amount
+check_PROGRAMS += tests/integration/test_temporal_jitter
+tests_integration_test_temporal_jitter_SOURCES = tests/integration/test_temporal_jitter.c $(GPU_TEST_FIXTURE)
+tests_integration_test_temporal_jitter_CFLAGS = $(TEST_CFLAGS)
+tests_integration_test_temporal_jitter_LDADD = $(TEST_LIBS)
+TESTS += tests/integration/test_temporal_jitter
 include $(srcdir)/engine/methods/smaa.mk
 include $(srcdir)/engine/methods/fxaa.mk
 include $(srcdir)/engine/methods/temporal2.mk

@@ -14,6 +14,7 @@
 #include "method.h"
 
 static const char *const t2msaa_offsets[] = {"0.25", "0.1875", "0.125", NULL};
+static const char *const t2msaa_blur_velocities[] = {"fraction", "uv", NULL};
 static const float t2msaa_offset_values[] = {0.25f, 0.1875f, 0.125f};
 
 static const struct aa_param_def t2msaa_params[] = {
@@ -25,12 +26,17 @@ static const struct aa_param_def t2msaa_params[] = {
 	{.name = "max_samples", .type = AA_PARAM_INT, .def = 16, .min = 1, .max = 255,
 	 .help = "cap on the per-pixel sample count N; the blend weight of a new frame is at least "
 		 "1/(max_samples+1)"},
+	{.name = "blur_velocity", .type = AA_PARAM_ENUM, .def = 0, .min = 0, .max = 1,
+	 .choices = t2msaa_blur_velocities,
+	 .help = "velocity in the blur threshold: fraction (of a pixel, Eq. 3.31's meaning) or uv (|velocity| "
+		 "in UV units, as the thesis's Listing 4.19)"},
 };
 
 struct aa_method_state {
 	struct aa_renderer *r;
 	float offset;
 	float max_samples;
+	bool blur_uv;
 	bool history_valid;
 	int current;                       /* history[current] is the latest frame */
 	struct aa_scene_target sample0;    /* G-buffer: colour, velocity, linear depth */
@@ -44,6 +50,7 @@ struct t2msaa_push {
 	int32_t size[2];
 	float max_samples;
 	int32_t history_valid;
+	int32_t blur_uv;
 };
 
 static void t2msaa_destroy(struct aa_method_state *s)
@@ -68,8 +75,10 @@ static int t2msaa_create(struct aa_renderer *r, const struct aa_method_params *p
 	s->r = r;
 	s->offset = t2msaa_offset_values[(int)p->v[0]];
 	s->max_samples = (float)p->v[1];
+	s->blur_uv = p->v[2] != 0;
 	snprintf(info->path_taken, sizeof info->path_taken,
-		 "2 virtual samples + 1 previous frame, jitter +-%g px", (double)s->offset);
+		 "2 virtual samples + 1 previous frame, jitter +-%g px, blur threshold from velocity %s",
+		 (double)s->offset, s->blur_uv ? "in UV units" : "fractions");
 	/* 2 virtual samples: shading and the alpha test once per pixel, as 2x MSAA does (shading_point.glsl) */
 	struct aa_scene_target_desc d0 = {.samples = 1, .outputs = AA_OUT_VELOCITY | AA_OUT_SURFACE,
 					  .virtual_samples = 2};
@@ -126,7 +135,7 @@ static int t2msaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, st
 	aa_renderer_draw_scene(s->r, ctx->cmd, &s->sample1, 0.5f - pos[1][0] - t[0], 0.5f - pos[1][1] - t[1]);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
 
-	struct t2msaa_push push = {{ctx->width, ctx->height}, s->max_samples, s->history_valid};
+	struct t2msaa_push push = {{ctx->width, ctx->height}, s->max_samples, s->history_valid, s->blur_uv};
 	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "t2msaa-resolve");
 	aa_compute_pass_dispatch(ctx->cmd, &s->resolve[s->current], &push, sizeof push,
 				 aa_compute_groups(ctx->width, 8), aa_compute_groups(ctx->height, 8), 1);
@@ -149,7 +158,7 @@ const struct aa_method aa_method_t2msaa = {
 	.summary = "temporal 2x MSAA: two samples per frame plus the reprojected previous frame",
 	.seed = "seed 000 (section 4.4.2, T2MSAA)",
 	.params = t2msaa_params,
-	.param_count = 2,
+	.param_count = 3,
 	.main_param = "offset",
 	.needs = AA_NEED_VELOCITY | AA_NEED_HISTORY | AA_NEED_MSAA,
 	.alpha_rule = AA_ALPHA_PER_PIXEL,

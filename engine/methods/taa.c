@@ -12,9 +12,10 @@ static const char *const taa_sharpen_kinds[] = {"off", "original", "normalized",
 static const char *const taa_presets[] = {"converge", "seed001", NULL};
 static const char *const taa_history_filters[] = {"bilinear", "catmull-rom", NULL};
 static const char *const taa_clips[] = {"aabb", "variance", NULL};
+static const char *const taa_clip_spaces[] = {"tonemapped", "linear", NULL};
 
 enum { P_JITTER, P_FEEDBACK_MIN, P_FEEDBACK_MAX, P_SHARPEN, P_PRESET, P_HISTORY_FILTER, P_CLIP, P_GAMMA,
-       P_MAX_SAMPLES, P_COUNT };
+       P_MAX_SAMPLES, P_CLIP_SPACE, P_COUNT };
 
 /* Defaults: INSIDE's feedback range (0.88-0.97), which seed 001 builds on but does not state; 16 Halton
  * points as seed 001 uses; sharpen off: against a box-filtered reference every sharpening kernel lowers
@@ -47,6 +48,9 @@ static const struct aa_param_def taa_params[] = {
 	{.name = "max_samples", .type = AA_PARAM_INT, .def = 64, .min = 1, .max = 4096,
 	 .help = "cap on the per-pixel sample count of still pixels (the new frame's weight is at least "
 		 "1/max_samples)"},
+	{.name = "clip_space", .type = AA_PARAM_ENUM, .def = AA_TAA_CLIP_SPACE_TONEMAPPED, .min = 0, .max = 1,
+	 .choices = taa_clip_spaces,
+	 .help = "space of the clip box: YCoCg of c/(1+luma) (Karis) or of linear colour"},
 };
 _Static_assert(sizeof taa_params / sizeof taa_params[0] == P_COUNT, "taa_params lists every parameter");
 _Static_assert(P_COUNT <= AA_MAX_PARAMS, "taa's parameters fit in struct aa_method_params");
@@ -75,6 +79,7 @@ static int taa_config(const struct aa_method_params *p, bool master, struct aa_t
 		.history_filter = (enum aa_taa_history_filter)(int)p->v[P_HISTORY_FILTER],
 		.clip = (enum aa_taa_clip)(int)p->v[P_CLIP], .gamma = (float)p->v[P_GAMMA],
 		.max_samples = (int)p->v[P_MAX_SAMPLES],
+		.clip_space = (enum aa_taa_clip_space)(int)p->v[P_CLIP_SPACE],
 	};
 	if (c->feedback_min > c->feedback_max)
 		return aa_error_set(err, AA_ERR_INVALID, "params.feedback_min", "feedback_min (%g) must not exceed "

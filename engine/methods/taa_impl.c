@@ -36,7 +36,7 @@ struct taa_converge_push {
 	float jitter[2];
 	int32_t size[2];
 	float feedback_min, feedback_max, gamma, max_samples;
-	int32_t cycle, jitter_index, history_valid, clip_variance, catmull_rom;
+	int32_t cycle, jitter_index, history_valid, clip_variance, catmull_rom, clip_linear;
 };
 
 static bool converging(const struct aa_method_state *s)
@@ -228,8 +228,9 @@ static void describe(const struct aa_taa_config *c, struct aa_method_result *inf
 	if (c->clip == AA_TAA_CLIP_VARIANCE)
 		snprintf(clip, sizeof clip, "variance %.3g", (double)c->gamma);
 	snprintf(info->path_taken, sizeof info->path_taken,
-		 "preset converge: Halton x%d, filtered current, %s %s clip, tonemapped, %s history, still "
+		 "preset converge: Halton x%d, filtered current, %s %s clip, %s, %s history, still "
 		 "pixels <= %d samples", c->jitter_length, box, clip,
+		 c->clip_space == AA_TAA_CLIP_SPACE_LINEAR ? "linear" : "tonemapped",
 		 c->history_filter == AA_TAA_HISTORY_CATMULL_ROM ? "Catmull-Rom" : "bilinear", c->max_samples);
 }
 
@@ -273,6 +274,7 @@ static void record_resolve(struct aa_method_state *s, struct aa_frame_ctx *ctx, 
 		.cycle = s->config.jitter_length, .jitter_index = ctx->frame % s->config.jitter_length,
 		.history_valid = s->history_valid, .clip_variance = s->config.clip == AA_TAA_CLIP_VARIANCE,
 		.catmull_rom = s->config.history_filter == AA_TAA_HISTORY_CATMULL_ROM,
+		.clip_linear = s->config.clip_space == AA_TAA_CLIP_SPACE_LINEAR,
 	};
 	aa_compute_pass_dispatch(ctx->cmd, &s->converge[k], &push, sizeof push, aa_compute_groups(r->width, 8),
 				 aa_compute_groups(r->height, 8), 1);

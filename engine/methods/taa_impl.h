@@ -11,6 +11,7 @@ enum aa_taa_sharpen { AA_TAA_SHARPEN_OFF, AA_TAA_SHARPEN_ORIGINAL, AA_TAA_SHARPE
 enum aa_taa_preset { AA_TAA_PRESET_CONVERGE, AA_TAA_PRESET_SEED001 };
 enum aa_taa_history_filter { AA_TAA_HISTORY_BILINEAR, AA_TAA_HISTORY_CATMULL_ROM };
 enum aa_taa_clip { AA_TAA_CLIP_AABB, AA_TAA_CLIP_VARIANCE };
+enum aa_taa_clip_space { AA_TAA_CLIP_SPACE_TONEMAPPED, AA_TAA_CLIP_SPACE_LINEAR };
 
 struct aa_taa_config {
 	bool master;           /* Sobel/ID/depth clip box (taa-sobel) */
@@ -23,6 +24,7 @@ struct aa_taa_config {
 	enum aa_taa_clip clip;
 	float gamma;           /* variance clip: mean +- gamma * sigma */
 	int max_samples;       /* cap on the per-pixel sample count of still pixels */
+	enum aa_taa_clip_space clip_space;
 };
 
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,

@@ -1,6 +1,8 @@
-/* Stability of the temporal methods (issue 4, item 7) for taa and taa-sobel: NaN/Inf injected into one
- * frame never reaches history or output; a camera cut resets history; history that reprojects from
- * off-screen is rejected rather than clamped into garbage; and the static-scene quality check. */
+/* Stability of taa and taa-sobel (issues 4 and 10): NaN/Inf injected into one frame never reaches
+ * history or output; a camera cut resets history; during a fast pan over a textured wall, history that
+ * reprojects from off-screen is rejected rather than clamped into garbage and the rest is reprojected
+ * the right way; a still camera converges (64 frames: no PSNR spread, no flicker); after an HDR
+ * camera teleport without a cut the bright ball stays close to the reference in every frame. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -23,26 +25,29 @@ static void make_spec(struct aa_job_spec *spec, const char *scene, const char *p
 	spec->first_frame = first;
 }
 
-/* Keeps a copy of every method's 8-bit output per frame. */
+/* Keeps a copy of every method's 8-bit output per frame, and the reference's after them. */
 struct frames {
-	int methods, count, w, h;
-	uint8_t *pixels; /* [frame][method][w*h*4] */
+	int methods, count, w, h; /* methods: slots per frame, the method count + 1 */
+	uint8_t *pixels; /* [frame][method or reference][w*h*4] */
 };
 
 static int keep_frames(const struct aa_event *ev, void *user)
 {
 	struct frames *f = user;
-	if (ev->type != AA_EVENT_METHOD_FRAME)
-		return 0;
 	size_t size = (size_t)f->w * f->h * 4;
-	memcpy(f->pixels + ((size_t)ev->frame_ordinal * f->methods + ev->method_index) * size, ev->image->pixels, size);
+	if (ev->type == AA_EVENT_METHOD_FRAME)
+		memcpy(f->pixels + ((size_t)ev->frame_ordinal * f->methods + ev->method_index) * size,
+		       ev->image->pixels, size);
+	else if (ev->type == AA_EVENT_REFERENCE_FRAME)
+		memcpy(f->pixels + ((size_t)ev->frame_ordinal * f->methods + f->methods - 1) * size,
+		       ev->image->pixels, size);
 	return 0;
 }
 
 static struct aa_job_result *run(const struct aa_job_spec *spec, const struct aa_scene *scene, struct frames *f)
 {
 	if (f) {
-		f->methods = spec->method_count;
+		f->methods = spec->method_count + 1;
 		f->count = spec->frames;
 		f->w = spec->width;
 		f->h = spec->height;
@@ -89,7 +94,7 @@ static void test_cut_resets_history(void **state)
 	fixture_free(run(&spec, NULL, &fresh));
 	size_t size = 96 * 54 * 4;
 	for (int m = 0; m < 2; m++) {
-		const uint8_t *a = across.pixels + ((size_t)4 * 2 + m) * size, *b = fresh.pixels + (size_t)m * size;
+		const uint8_t *a = across.pixels + ((size_t)4 * across.methods + m) * size, *b = fresh.pixels + (size_t)m * size;
 		int max = 0;
 		for (size_t i = 0; i < size; i++)
 			max = abs(a[i] - b[i]) > max ? abs(a[i] - b[i]) : max;
@@ -100,74 +105,208 @@ static void test_cut_resets_history(void **state)
 	free(fresh.pixels);
 }
 
-/* (d) a fast pan: pixels entering the image have their history off-screen. Rejected history means the
- * entering strip looks like the current frame; clamping would smear the border into it. */
-static void test_offscreen_history_rejected(void **state)
+/* Mean over frames and pixels of |a - b| in 8-bit levels, R, G and B, in columns [x0, x1) of frames
+ * [t0, t1) of two methods' kept frames. */
+static double mean_difference(const struct frames *f, int ma, int mb, int t0, int t1, int x0, int x1)
+{
+	size_t size = (size_t)f->w * f->h * 4;
+	double sum = 0.0;
+	for (int t = t0; t < t1; t++) {
+		const uint8_t *a = f->pixels + ((size_t)t * f->methods + ma) * size;
+		const uint8_t *b = f->pixels + ((size_t)t * f->methods + mb) * size;
+		for (int y = 0; y < f->h; y++)
+			for (int x = x0; x < x1; x++)
+				for (int c = 0; c < 3; c++) {
+					size_t i = ((size_t)y * f->w + (size_t)x) * 4 + (size_t)c;
+					sum += abs((int)a[i] - (int)b[i]);
+				}
+	}
+	return sum / ((double)(t1 - t0) * f->h * (x1 - x0) * 3);
+}
+
+/* (d) A fast pan to the right (2 degrees a frame, ~5 px at 160 px) across moving-sphere's brick wall.
+ * Pixels entering at the right edge have their history off-screen: rejected, the entering strip shows
+ * this frame's content and is about as far from the reference as none is there; clamped to the border,
+ * the border's bricks would be smeared across it. The rest of the frame reprojects: with the converging
+ * resolve every frame after the first scores better than none (history fetched from the wrong place,
+ * e.g. along a flipped velocity, ghosts the whole wall). */
+static void test_fast_pan_over_texture(void **state)
 {
 	(void)state;
 	char file[1024];
 	struct aa_error err = {0};
 	struct aa_scene *scene;
-	assert_int_equal(aa_scene_resolve("thin-wires", file, sizeof file, &err), 0);
+	assert_int_equal(aa_scene_resolve("moving-sphere", file, sizeof file, &err), 0);
 	assert_int_equal(aa_scene_load(file, &scene, &err), 0);
 	scene->paths[0].kind = AA_PATH_PAN;
-	scene->paths[0].degrees = -240.0f; /* 2 degrees a frame: ~6 px at 160 px and 50 degrees */
+	scene->paths[0].degrees = -240.0f; /* 2 degrees a frame at 30 fps, turning right */
 	scene->paths[0].duration = 4.0;
-	const char *methods[] = {"none", "taa", "taa-sobel"};
+	const char *methods[] = {"none", "taa", "taa-sobel", "taa:preset=seed001"};
 	struct aa_job_spec spec;
 	struct frames f = {0};
-	make_spec(&spec, "thin-wires-fast-pan", "default", methods, 3, 160, 90, 0, 6, 16);
+	make_spec(&spec, "moving-sphere-fast-pan", "default", methods, 4, 160, 90, 0, 8, 32);
 	struct aa_job_result *r = run(&spec, scene, &f);
-	size_t size = 160 * 90 * 4;
-	/* In an 8-column strip on each side, frames 1..5, compare each method with none's output of the same
-	 * frame: rejected history leaves this frame's content (close to none); clamped history would drag
-	 * the border colours of the previous view across the strip. */
-	for (int side = 0; side < 2; side++) {
-		double err_side[3] = {0};
-		for (int m = 0; m < 3; m++)
-			for (int t = 1; t < 6; t++) {
-				const uint8_t *img = f.pixels + ((size_t)t * 3 + m) * size;
-				const uint8_t *base = f.pixels + ((size_t)t * 3 + 0) * size;
-				for (int y = 0; y < 90; y++)
-					for (int x = 0; x < 8; x++) {
-						int xx = side ? 159 - x : x;
-						for (int c = 0; c < 3; c++) {
-							size_t i = ((size_t)y * 160 + (size_t)xx) * 4 + (size_t)c;
-							err_side[m] += abs((int)img[i] - (int)base[i]);
-						}
-					}
-			}
-		for (int m = 1; m < 3; m++) {
-			double mean = err_side[m] / (5.0 * 90 * 8 * 3);
-			printf("  %s, %s strip: mean |difference| from none %.2f\n", methods[m], side ? "right" : "left",
-			       mean);
-			/* current-frame content: close to none (jitter and blending differ by a few levels) */
-			assert_true(mean < 12.0);
+	int reference = f.methods - 1;
+	double none = mean_difference(&f, 0, reference, 1, 8, 152, 160);
+	for (int m = 1; m < 4; m++) {
+		double strip = mean_difference(&f, m, reference, 1, 8, 152, 160), worst = 1e9;
+		for (int t = 1; t < 8; t++) {
+			double d = r->methods[m].frames[t].metrics.psnr - r->methods[0].frames[t].metrics.psnr;
+			worst = d < worst ? d : worst;
 		}
+		printf("  %s: entering strip %.2f levels from the reference (none %.2f); worst frame after the "
+		       "first %+.2f dB against none\n", methods[m], strip, none, worst);
+		assert_true(strip < none + 1.5);
+		/* seed 001's resolve, kept as it was, scores 0.1 dB under none in one frame */
+		assert_true(worst > (m == 3 ? -0.5 : 0.3));
 	}
-	for (int m = 0; m < 3; m++)
-		for (int t = 0; t < 6; t++)
+	for (int m = 0; m < 4; m++)
+		for (int t = 0; t < 8; t++)
 			assert_int_equal(r->methods[m].frames[t].nonfinite, 0);
 	fixture_free(r);
 	free(f.pixels);
 	aa_scene_free(scene);
 }
 
-/* Static thin wires, 16 frames (issue 4 acceptance): both beat none by 3 dB on the last frame. */
-static void test_static_thin_wires(void **state)
+/* Still thin wires, 64 frames (issue 10): after a warm-up of two jitter cycles the image has converged,
+ * so its PSNR does not move and it does not flicker, well ahead of none. Seed 001's resolve swings by
+ * 0.6 dB with the jitter and flickers at ~3 here; the bounds leave it no chance. */
+static void test_still_camera_converges(void **state)
 {
 	(void)state;
 	const char *methods[] = {"none", "taa", "taa-sobel"};
 	struct aa_job_spec spec;
-	make_spec(&spec, "thin-wires", "static", methods, 3, 640, 360, 0, 16, 32);
+	/* 64 reference samples: with 16, the reference's Halton points would be taa's own jitter positions */
+	make_spec(&spec, "thin-wires", "static", methods, 3, 160, 90, 0, 64, 64);
 	struct aa_job_result *r = run(&spec, NULL, NULL);
-	double none = r->methods[0].frames[15].metrics.psnr;
+	double none = r->methods[0].frames[63].metrics.psnr;
 	for (int m = 1; m < 3; m++) {
-		double p = r->methods[m].frames[15].metrics.psnr;
-		printf("  thin-wires static 640x360, frame 15: none %.2f dB, %s %.2f dB\n", none, methods[m], p);
-		assert_true(p > none + 3.0);
+		const struct aa_frame_result *fr = r->methods[m].frames;
+		double lo = 1e9, hi = -1e9, flicker = 0.0;
+		for (int t = 32; t < 64; t++) {
+			lo = fr[t].metrics.psnr < lo ? fr[t].metrics.psnr : lo;
+			hi = fr[t].metrics.psnr > hi ? fr[t].metrics.psnr : hi;
+			flicker += fr[t].flicker / 32.0;
+		}
+		printf("  %s, frames 32-63: PSNR %.2f to %.2f dB (none %.2f), flicker %.3f; frame 0 %.2f dB\n",
+		       methods[m], lo, hi, none, flicker, fr[0].metrics.psnr);
+		assert_true(hi - lo < 0.1);
+		assert_true(flicker < 0.05);
+		assert_true(lo > none + 10.0);
+		/* the first frame is reconstructed at the pixel centre: no worse than no AA */
+		assert_true(fr[0].metrics.psnr > r->methods[0].frames[0].metrics.psnr - 0.2);
 	}
 	fixture_free(r);
+}
+
+/* The ball's pixels: where the reference frame is the ball's saturated yellow. */
+static bool is_ball(const uint8_t *px)
+{
+	return px[0] > 180 && px[1] > 140 && px[2] < 90;
+}
+
+struct teleport_frames {
+	int w, h, count;
+	uint8_t *reference, *taa; /* [frame][w*h*4] */
+};
+
+static int keep_teleport(const struct aa_event *ev, void *user)
+{
+	struct teleport_frames *f = user;
+	size_t size = (size_t)f->w * f->h * 4;
+	if (ev->type == AA_EVENT_REFERENCE_FRAME)
+		memcpy(f->reference + (size_t)ev->frame_ordinal * size, ev->image->pixels, size);
+	else if (ev->type == AA_EVENT_METHOD_FRAME && ev->method_index == 1)
+		memcpy(f->taa + (size_t)ev->frame_ordinal * size, ev->image->pixels, size);
+	return 0;
+}
+
+/* (e) hdr-teleport: the camera jumps at frame 30 without a cut, so velocities after it come from the old
+ * view, where a screen hid the ball; the ball, hundreds of times brighter than the floor and ~7 px
+ * across at 320x180, crosses the new view at ~15 px a frame. In every frame after the teleport its
+ * pixels stay within 40 levels of the reference on average (drawn as floor they would be ~100 off) and
+ * within 18 on average over the 13 frames (measured 15.0; a clamp instead of the clip toward the box
+ * centre keeps more stale history: 20.6); the frame as a whole scores no lower than none by more than
+ * 1 dB (issue 10's acceptance; seed 001's resolve falls 1.45 dB below none on the teleport frame). */
+static void test_hdr_teleport(void **state)
+{
+	(void)state;
+	for (int k = 0; k < 2; k++) {
+		const char *methods[] = {"none", k ? "taa-sobel" : "taa"};
+		const int first = 28, frames = 16, w = 320, h = 180;
+		struct aa_job_spec spec;
+		make_spec(&spec, "hdr-teleport", "default", methods, 2, w, h, first, frames, 32);
+		size_t size = (size_t)w * h * 4;
+		struct teleport_frames f = {w, h, frames, calloc(frames, size), calloc(frames, size)};
+		struct aa_job_result *r = fixture_run(&spec, NULL, keep_teleport, &f);
+		double worst_ball = 0.0, mean_ball = 0.0, worst_db = 1e9;
+		int after = 0;
+		for (int t = 31 - first; t < frames; t++, after++) {
+			double sum = 0.0;
+			int n = 0;
+			for (size_t i = 0; i < size; i += 4)
+				if (is_ball(f.reference + (size_t)t * size + i)) {
+					for (int c = 0; c < 3; c++)
+						sum += abs((int)f.taa[(size_t)t * size + i + (size_t)c] -
+							   (int)f.reference[(size_t)t * size + i + (size_t)c]);
+					n++;
+				}
+			if (n < 16) /* the ball is in view in every frame after the teleport */
+				fail_msg("frame %d: %d ball pixels in the reference", first + t, n);
+			double ball = sum / (3.0 * n);
+			double db = r->methods[1].frames[t].metrics.psnr - r->methods[0].frames[t].metrics.psnr;
+			printf("    %s frame %d: ball pixels %.1f levels off the reference, frame %+.2f dB against none\n",
+			       methods[1], first + t, ball, db);
+			worst_ball = ball > worst_ball ? ball : worst_ball;
+			mean_ball += ball;
+			worst_db = db < worst_db ? db : worst_db;
+		}
+		mean_ball /= after;
+		printf("  %s after the teleport: ball pixels %.1f levels off on average, at most %.1f; frames at "
+		       "worst %+.2f dB against none\n", methods[1], mean_ball, worst_ball, worst_db);
+		assert_true(worst_ball < 40.0);
+		assert_true(mean_ball < 18.0);
+		assert_true(worst_db > -1.0);
+		fixture_free(r);
+		free(f.reference);
+		free(f.taa);
+	}
+}
+
+/* The parameters: seed 001's defaults (INSIDE's feedback range 0.88-0.97, 16 Halton points) for both
+ * presets, and the converging resolve's own parameters refused with preset=seed001, naming the field.
+ * Raising the default feedback_max to 0.99 barely shows in images (it bounds the history weight only
+ * where current and history already agree: moving-sphere 0.02 dB), so it is checked here. */
+static void test_taa_parameters(void **state)
+{
+	(void)state;
+	const char *names[] = {"taa", "taa-sobel"};
+	for (int k = 0; k < 2; k++) {
+		const struct aa_method *m;
+		struct aa_method_params p;
+		struct aa_error err = {0};
+		assert_int_equal(aa_method_parse(names[k], "methods[0]", &m, &p, &err), 0);
+		double want[] = {16, 0.88, 0.97};
+		const char *keys[] = {"jitter_length", "feedback_min", "feedback_max"};
+		for (int i = 0; i < 3; i++) {
+			int at = aa_method_param_index(m, keys[i]);
+			assert_true(at >= 0);
+			if (p.v[at] != want[i])
+				fail_msg("%s: default %s is %g, seed 001 / INSIDE use %g", names[k], keys[i], p.v[at], want[i]);
+		}
+		const char *method[] = {"taa:preset=seed001,clip=aabb"};
+		if (k)
+			method[0] = "taa-sobel:preset=seed001,history_filter=bilinear";
+		struct aa_job_spec spec;
+		make_spec(&spec, "thin-wires", "static", method, 1, 32, 18, 0, 1, 2);
+		struct aa_job_result *r = NULL;
+		int rc = aa_job_run_scene(fixture_engine, &spec, NULL, NULL, NULL, &r, &err);
+		printf("  %s: %s: %s\n", method[0], err.path, err.message);
+		assert_int_not_equal(rc, 0);
+		assert_int_equal(err.code, AA_ERR_INVALID);
+		assert_string_equal(err.path, k ? "params.history_filter" : "params.clip");
+		fixture_free(r);
+	}
 }
 
 int main(void)
@@ -175,8 +314,10 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_nonfinite_never_reaches_history),
 		cmocka_unit_test(test_cut_resets_history),
-		cmocka_unit_test(test_offscreen_history_rejected),
-		cmocka_unit_test(test_static_thin_wires),
+		cmocka_unit_test(test_fast_pan_over_texture),
+		cmocka_unit_test(test_still_camera_converges),
+		cmocka_unit_test(test_hdr_teleport),
+		cmocka_unit_test(test_taa_parameters),
 	};
 	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }
