@@ -188,13 +188,30 @@ static void test_still_camera_converges(void **state)
 			hi = fr[t].metrics.psnr > hi ? fr[t].metrics.psnr : hi;
 			flicker += fr[t].flicker / 32.0;
 		}
-		printf("  %s, frames 32-63: PSNR %.2f to %.2f dB (none %.2f), flicker %.3f; frame 0 %.2f dB\n",
-		       methods[m], lo, hi, none, flicker, fr[0].metrics.psnr);
+		printf("  %s, frames 32-63: PSNR %.2f to %.2f dB (none %.2f), flicker %.3f\n", methods[m], lo, hi, none,
+		       flicker);
 		assert_true(hi - lo < 0.1);
 		assert_true(flicker < 0.05);
 		assert_true(lo > none + 10.0);
-		/* the first frame is reconstructed at the pixel centre: no worse than no AA */
-		assert_true(fr[0].metrics.psnr > r->methods[0].frames[0].metrics.psnr - 0.2);
+	}
+	fixture_free(r);
+}
+
+/* The first frame is reconstructed at the pixel centre from the jittered samples, so it is no worse than
+ * none (issue 10: frame 0 of seed 001's resolve is the jittered image, shifted by up to half a pixel:
+ * hard-edges at 320x180 0.6 dB under none). */
+static void test_first_frame(void **state)
+{
+	(void)state;
+	const char *methods[] = {"none", "taa", "taa-sobel"};
+	struct aa_job_spec spec;
+	make_spec(&spec, "hard-edges", "static", methods, 3, 320, 180, 0, 1, 32);
+	struct aa_job_result *r = run(&spec, NULL, NULL);
+	double none = r->methods[0].frames[0].metrics.psnr;
+	for (int m = 1; m < 3; m++) {
+		double p = r->methods[m].frames[0].metrics.psnr;
+		printf("  hard-edges 320x180, first frame: none %.2f dB, %s %.2f dB\n", none, methods[m], p);
+		assert_true(p > none - 0.2);
 	}
 	fixture_free(r);
 }
@@ -316,6 +333,7 @@ int main(void)
 		cmocka_unit_test(test_cut_resets_history),
 		cmocka_unit_test(test_fast_pan_over_texture),
 		cmocka_unit_test(test_still_camera_converges),
+		cmocka_unit_test(test_first_frame),
 		cmocka_unit_test(test_hdr_teleport),
 		cmocka_unit_test(test_taa_parameters),
 	};
