@@ -1,7 +1,8 @@
 // TAA resolve that converges (preset=converge, the default of taa and taa-sobel; docs/methods.md).
 // Differences from seed 001's resolve (taa_resolve.glsl), each for a measured failure of it:
-// - the current frame is reconstructed at the pixel centre from the jittered 3x3 samples with the
-//   Gaussian fit of Blackman-Harris (Karis 2014, UE4: sigma 0.47 px), so it is not shifted by the jitter;
+// - the current frame is reconstructed at the pixel centre from the jittered 3x3 samples with a Gaussian
+//   fit of Blackman-Harris (Karis 2014, UE4; weights from the jitter, taa_impl.c), so it is not shifted
+//   by the jitter;
 // - the clip box and the clip work on tonemapped colour c / (1 + luma) (Karis's HDR weighting) in YCoCg,
 //   inverted afterwards, so a bright sample cannot widen the box to hold any stale history; the blend
 //   stays linear, as the reference averages: blended in tonemapped space, a few percent of floor gave a
@@ -49,6 +50,7 @@ layout(push_constant) uniform Push {
 	int clip_variance;    // 0: AABB (3x3 and cross min/max averaged, as seed 001), 1: variance
 	int catmull_rom;      // history read under motion: 0 bilinear, 1 Catmull-Rom
 	int clip_linear;      // clip in linear YCoCg instead of tonemapped YCoCg
+	float filter_weights[9]; // reconstruction filter weight of each 3x3 sample this frame, row by row
 } pc;
 
 // A settled pixel's own sample differing from the one at the same position a cycle ago by more than
@@ -56,11 +58,6 @@ layout(push_constant) uniform Push {
 const uint CHANGE_STEPS = 4u;
 // A cycle mean further than this (tonemapped YCoCg) from history replaces it instead of being folded in.
 const float CHANGE = 0.02;
-// Width of the current frame's reconstruction filter relative to UE4's Gaussian fit of Blackman-Harris
-// (exp(-2.29 d^2), sigma 0.47 px): 0.7 (sigma 0.33 px) measured best against the box-filtered reference
-// (moving-sphere, 320x180, 60 frames: mean PSNR 23.97 dB at 1.0, 24.19 at 0.7, 24.23 at 0.5, but frame 0
-// at 0.5 falls to 0.5 dB over none, from 0.8 at 0.7).
-const float FILTER_WIDTH = 0.7;
 // Below this many pixels of motion a pixel counts as still (rounding of equal matrices gives ~0).
 const float STILL_PIXELS = 0.01;
 
@@ -183,9 +180,7 @@ Neighbourhood gather(ivec2 p)
 			if (!finite3(c)) // non-finite samples are left out: they must not reach history
 				continue;
 			c = clamp(c, vec3(0.0), vec3(65504.0));
-			// the sample of pixel q shows the scene at q's centre - jitter: its distance from this centre
-			vec2 d = (vec2(x, y) - pc.jitter) / FILTER_WIDTH;
-			float w = exp(-2.29 * dot(d, d));
+			float w = pc.filter_weights[(y + 1) * 3 + (x + 1)];
 			filtered += w * c;
 			c = to_working(c);
 			filter_weight += w;
@@ -270,17 +265,24 @@ bool finite4(vec4 v)
 	return !any(isnan(v)) && !any(isinf(v));
 }
 
-// The 8-bit tonemapped luma of the own sample at jitter position i, and its update.
+// The 8-bit tonemapped luma of the own sample at jitter position i (word i / 4, byte i % 4), and its
+// update. The word is selected by comparisons: a dynamically indexed vector goes through memory.
+uint position_word(uvec4 t, int i)
+{
+	return i < 8 ? (i < 4 ? t.x : t.y) : (i < 12 ? t.z : t.w);
+}
+
 uint position_luma(uvec4 t, int i)
 {
-	return (t[i >> 2] >> (8 * (i & 3))) & 0xffu;
+	return (position_word(t, i) >> (8 * (i & 3))) & 0xffu;
 }
 
 uvec4 with_position_luma(uvec4 t, int i, uint value)
 {
 	uint shift = 8u * uint(i & 3);
-	t[i >> 2] = (t[i >> 2] & ~(0xffu << shift)) | (value << shift);
-	return t;
+	uint word = (position_word(t, i) & ~(0xffu << shift)) | (value << shift);
+	return i < 8 ? (i < 4 ? uvec4(word, t.yzw) : uvec4(t.x, word, t.zw))
+		     : (i < 12 ? uvec4(t.xy, word, t.w) : uvec4(t.xyz, word));
 }
 
 void main()
