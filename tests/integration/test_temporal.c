@@ -242,8 +242,8 @@ static int keep_teleport(const struct aa_event *ev, void *user)
  * view, where a screen hid the ball; the ball, hundreds of times brighter than the floor and ~7 px
  * across at 320x180, crosses the new view at ~15 px a frame. In every frame after the teleport its
  * pixels stay within 40 levels of the reference on average (drawn as floor they would be ~100 off) and
- * within 18 on average over the 13 frames (measured 15.0; a clamp instead of the clip toward the box
- * centre keeps more stale history: 20.6); the frame as a whole scores no lower than none by more than
+ * within 18 on average over the 13 frames (measured 15.3; a clamp instead of the clip toward the box
+ * centre keeps more stale history: 20.5); the frame as a whole scores no lower than none by more than
  * 1 dB (issue 10's acceptance; seed 001's resolve falls 1.45 dB below none on the teleport frame). */
 static void test_hdr_teleport(void **state)
 {
