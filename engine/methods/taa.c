@@ -34,8 +34,9 @@ static const struct aa_param_def taa_params[] = {
 	 .help = "display sharpen: Xu's original [0 -1 0;-1 5 -1;0 -1 0] or seed 001's normalized kernel"},
 	{.name = "preset", .type = AA_PARAM_ENUM, .def = AA_TAA_PRESET_CONVERGE, .min = 0, .max = 1,
 	 .choices = taa_presets,
-	 .help = "converge: filtered unjittered current, tonemapped resolve, per-pixel sample count; seed001: "
-		 "seed 001's resolve exactly (the parameters below apply to converge only)"},
+	 .help = "converge: current frame filtered at the pixel centre, clip in tonemapped YCoCg, still pixels "
+		 "averaged over whole jitter cycles; seed001: seed 001's resolve exactly (the parameters below apply "
+		 "to converge only)"},
 	{.name = "history_filter", .type = AA_PARAM_ENUM, .def = AA_TAA_HISTORY_CATMULL_ROM, .min = 0, .max = 1,
 	 .choices = taa_history_filters,
 	 .help = "history read under motion: bilinear, or bicubic Catmull-Rom (sharper; Falcor, HDRP)"},
