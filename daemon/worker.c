@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "farm.h"
 #include "jobs.h"
 #include "loop.h"
 #include "results/results.h"
@@ -78,9 +79,32 @@ static json_t *started_event(const struct aa_job_result *r)
 			 r->spec.frames, "width", r->spec.width, "height", r->spec.height, "repeat", r->spec.timing_repeat);
 }
 
+/* A suite's events name their case; its images live in the case's folder (cases/NAME/...). */
+static void add_case(const struct job *job, const struct aa_event *ev, json_t *o)
+{
+	if (!job->spec.is_suite)
+		return;
+	char id[512];
+	aa_case_id(&job->spec, ev->case_index, id, sizeof id);
+	json_object_set_new(o, "case", json_string(id));
+	json_object_set_new(o, "case_index", json_integer(ev->case_index));
+	if (ev->type == AA_EVENT_JOB_STARTED)
+		json_object_set_new(o, "cases", json_integer(job->spec.case_count));
+}
+
+static void case_path(const struct job *job, const struct aa_event *ev, char *rel, size_t size)
+{
+	char dir[600], inner[512];
+	aa_case_relpath(&job->spec, ev->case_index, dir, sizeof dir);
+	if (!dir[0])
+		return;
+	snprintf(inner, sizeof inner, "%s", rel);
+	snprintf(rel, size, "%s/%s", dir, inner);
+}
+
 static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
 {
-	char rel[256];
+	char rel[1200];
 	json_t *o;
 	bool images = ctx->job->spec.keep_frames;
 	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
@@ -106,17 +130,21 @@ static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
 			      "mse", num(fr->metrics.mse));
 		aa_results_frame_relpath("frames", m->label, ev->frame_ordinal, rel, sizeof rel);
 		if (images) {
-			char diff[256];
+			char diff[1200];
 			aa_results_frame_relpath("diff", m->label, ev->frame_ordinal, diff, sizeof diff);
+			case_path(ctx->job, ev, diff, sizeof diff);
 			json_object_set_new(o, "diff", json_string(diff));
 		}
 	}
+	case_path(ctx->job, ev, rel, sizeof rel);
+	add_case(ctx->job, ev, o);
 	if (images)
 		json_object_set_new(o, "image", json_string(rel));
 	if (images && ctx->job->spec.linear_frames) {
 		const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference"
 									  : ev->result->methods[ev->method_index].label;
 		aa_results_linear_relpath(label, ev->frame_ordinal, rel, sizeof rel);
+		case_path(ctx->job, ev, rel, sizeof rel);
 		json_object_set_new(o, "linear", json_string(rel));
 	}
 	json_object_set_new(o, "done", json_integer(++ctx->done));
@@ -129,11 +157,15 @@ static int on_event(const struct aa_event *ev, void *user)
 	struct run_ctx *ctx = user;
 	struct store *s = ctx->s;
 	switch (ev->type) {
-	case AA_EVENT_JOB_STARTED:
-		return publish(ctx, started_event(ev->result), false);
+	case AA_EVENT_JOB_STARTED: {
+		json_t *o = started_event(ev->result);
+		add_case(ctx->job, ev, o);
+		return publish(ctx, o, false);
+	}
 	case AA_EVENT_REFERENCE_FRAME:
 	case AA_EVENT_METHOD_FRAME:
-		if (ctx->job->spec.keep_frames && aa_results_write_event_images(ctx->dir, ev, &ctx->write_err)) {
+		if (ctx->job->spec.keep_frames &&
+		    aa_suite_write_event_images(ctx->dir, &ctx->job->spec, ev, &ctx->write_err)) {
 			ctx->failed_writes++;
 			return 1; /* stored results must be complete; a failed write fails the job */
 		}
@@ -156,35 +188,61 @@ static int on_event(const struct aa_event *ev, void *user)
 	}
 }
 
-/* Per-method cost and accuracy, the numbers a dashboard plots: taken from results.json's methods. */
-static json_t *summarize(const json_t *results)
+/* Per-method cost and accuracy, the numbers a dashboard plots: taken from results.json's methods (for a
+ * suite, of every case, each entry naming its case). */
+static void summarize_case(json_t *out, json_t *doc, const char *case_id)
 {
-	json_t *out = json_array(), *m;
+	json_t *m;
 	size_t i;
-	json_array_foreach(json_object_get(results, "methods"), i, m) {
+	json_array_foreach(json_object_get(doc, "methods"), i, m) {
 		json_t *metrics = json_object_get(m, "metrics"), *gpu = json_object_get(m, "gpu_ms");
-		json_array_append_new(out, json_pack("{sO sO sO sO sO sO sO sO sO}", "label", json_object_get(m, "label"),
+		json_t *e = json_pack("{sO sO sO sO sO sO sO sO sO}", "label", json_object_get(m, "label"),
 			"gpu_ms", json_object_get(gpu, "median"), "gpu_ms_p10", json_object_get(gpu, "p10"),
 			"gpu_ms_p90", json_object_get(gpu, "p90"), "gpu_ms_n", json_object_get(gpu, "n"),
 			"memory_bytes", json_object_get(m, "memory_bytes"),
 			"psnr", json_object_get(json_object_get(metrics, "psnr"), "mean"),
 			"ssim", json_object_get(json_object_get(metrics, "ssim"), "mean"),
-			"alpha_rule", json_object_get(m, "alpha_rule")));
+			"alpha_rule", json_object_get(m, "alpha_rule"));
+		/* what trends plot besides (/v1/series) */
+		json_object_set(e, "flip", json_object_get(json_object_get(metrics, "flip"), "mean"));
+		json_object_set(e, "flicker", json_object_get(json_object_get(metrics, "flicker"), "mean"));
+		if (case_id)
+			json_object_set_new(e, "case", json_string(case_id));
+		json_array_append_new(out, e);
 	}
+}
+
+static json_t *summarize(const json_t *results)
+{
+	json_t *out = json_array(), *c;
+	size_t i;
+	json_t *cases = json_object_get(results, "cases");
+	if (!cases)
+		summarize_case(out, (json_t *)results, NULL);
+	json_array_foreach(cases, i, c)
+		summarize_case(out, c, json_string_value(json_object_get(c, "id")));
 	return out;
 }
 
-static const struct aa_scene *find_scene(struct store *s, struct job *job, const char *dir, char *file,
-					 size_t size, struct aa_error *err)
+static const struct aa_scene *find_scene(struct store *s, struct job *job, const char *scene_name, const char *dir,
+					 char *file, size_t size, struct aa_error *err)
 {
 	if (!job->inline_scene) {
-		if (aa_scene_resolve(job->spec.scene, file, size, err))
+		if (aa_scene_resolve(scene_name, file, size, err))
 			return NULL;
 	} else if ((size_t)snprintf(file, size, "%s/scene.json", dir) >= size) {
 		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
 		return NULL;
 	}
 	return scene_cache_get(s->scenes, file, err);
+}
+
+/* Each case's scene, from the scene cache (aa_suite_run asks once per case). */
+static const struct aa_scene *case_scene(const struct aa_job_spec *c, void *user, struct aa_error *err)
+{
+	struct run_ctx *ctx = user;
+	char file[1400];
+	return find_scene(ctx->s, ctx->job, c->scene, ctx->dir, file, sizeof file, err);
 }
 
 static void run_job(struct store *s, struct job *job)
@@ -197,26 +255,32 @@ static void run_job(struct store *s, struct job *job)
 	ctx.log = fopen(path, "w");
 
 	struct aa_error err = {0};
-	struct aa_job_result *result = NULL;
+	struct aa_suite_result *result = NULL;
 	double t0 = now_s();
-	const struct aa_scene *scene = find_scene(s, job, ctx.dir, file, sizeof file, &err);
-	int rc = scene ? aa_job_run_scene(s->engine, &job->spec, scene, on_event, &ctx, &result, &err) : -1;
+	int rc = aa_suite_run(s->engine, &job->spec, case_scene, &ctx, on_event, &ctx, &result, &err);
 	double busy = now_s() - t0;
 	if (rc && ctx.failed_writes)
 		err = ctx.write_err;
 	json_t *summary = NULL;
 	if (rc == 0) {
-		snprintf(result->scene_file, sizeof result->scene_file, "%.1000s", job->inline_scene ? "scene.json" : file);
-		json_t *results = aa_results_to_json(result);
+		/* the scenes came from the cache: say which file each case used */
+		for (int i = 0; i < result->case_count; i++) {
+			struct aa_error ignored = {0};
+			if (job->inline_scene)
+				snprintf(file, sizeof file, "scene.json");
+			else if (aa_scene_resolve(result->cases[i]->spec.scene, file, sizeof file, &ignored))
+				file[0] = '\0';
+			snprintf(result->cases[i]->scene_file, sizeof result->cases[i]->scene_file, "%.1000s", file);
+		}
+		json_t *results = aa_suite_results_to_json(result);
 		summary = summarize(results);
 		json_decref(results);
-		if (aa_results_write_json(result, ctx.dir, &err) || aa_report_write_html(result, ctx.dir, &err))
+		if (aa_suite_results_write(result, ctx.dir, &err))
 			rc = -1;
 	}
-	if (result) {
-		aa_job_result_free(result);
-		free(result);
-	}
+	aa_suite_result_free(result);
+	/* the verdict against the job's baseline, ready before anyone can see the job done */
+	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
 
 	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !ctx.failed_writes);
 	if (failed)
@@ -234,8 +298,13 @@ static void run_job(struct store *s, struct job *job)
 		job->state = JOB_DONE;
 		job->summary = json_incref(summary);
 		ev = json_pack("{ss so ss}", "event", "job_finished", "summary", summary, "results", "results.json");
+		if (verdict) {
+			job->compare = json_incref(verdict);
+			json_object_set_new(ev, "compare", verdict);
+		}
 	} else if (err.code == AA_ERR_CANCELLED && !ctx.failed_writes) {
 		json_decref(summary);
+		json_decref(verdict);
 		job->state = requeue ? JOB_QUEUED : JOB_CANCELLED;
 		ev = json_pack("{ss ss}", "event", "job_cancelled", "state", requeue ? "queued" : "cancelled");
 	} else {
