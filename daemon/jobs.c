@@ -85,6 +85,9 @@ json_t *job_to_json(const struct job *job)
 		json_object_set_new(o, "run", json_integer((json_int_t)job->run));
 	if (job->interruptions > 0)
 		json_object_set_new(o, "interruptions", json_integer(job->interruptions));
+	char hash[80]; /* what a job without a suite name is plotted and compared by (/v1/series) */
+	aa_job_hash(&job->spec, hash, sizeof hash);
+	json_object_set_new(o, "job_hash", json_string(hash));
 	if (job->state == JOB_FAILED)
 		json_object_set_new(o, "error", json_pack("{ss ss ss}", "code", aa_error_code_name(job->error.code),
 							  "message", job->error.message, "path", job->error.path));

@@ -35,49 +35,85 @@ static void run_name(json_t *run, char *out, size_t size)
 		snprintf(out, size, "%s", string(run, "source"));
 }
 
-/* "18.87 -> 18.79 (-0.08)" with the right number of decimals; "identical" for an infinite PSNR. */
-static void quality_cell(json_t *q, int decimals, bool psnr, char *out, size_t size)
+/* NEW's value and its change, "18.79 -0.08" ("identical" for an infinite PSNR); a '!' marks a change
+ * that tripped a gate. */
+static void quality_cell(json_t *q, int decimals, bool psnr, bool tripped, char *out, size_t size)
 {
-	double b = number(q, "base"), n = number(q, "new"), c = number(q, "change");
-	char bt[32], nt[32], ct[32];
-	if (psnr && json_is_true(json_object_get(q, "base_identical")))
-		snprintf(bt, sizeof bt, "ident.");
-	else if (isfinite(b))
-		snprintf(bt, sizeof bt, "%.*f", decimals, b);
-	else
-		snprintf(bt, sizeof bt, "-");
+	double n = number(q, "new"), c = number(q, "change");
+	char nt[32], ct[32];
 	if (psnr && json_is_true(json_object_get(q, "new_identical")))
-		snprintf(nt, sizeof nt, "ident.");
+		snprintf(nt, sizeof nt, "identical");
 	else if (isfinite(n))
 		snprintf(nt, sizeof nt, "%.*f", decimals, n);
 	else
 		snprintf(nt, sizeof nt, "-");
-	if (isfinite(c))
+	if (psnr && json_is_true(json_object_get(q, "base_identical")) && !json_is_true(json_object_get(q, "new_identical")))
+		snprintf(ct, sizeof ct, "(was identical)");
+	else if (isfinite(c))
 		snprintf(ct, sizeof ct, "%+.*f", decimals, c);
 	else
-		snprintf(ct, sizeof ct, "?");
-	snprintf(out, size, "%s>%s %s", bt, nt, ct);
+		ct[0] = '\0';
+	snprintf(out, size, "%.31s %.31s%s", nt, ct, tripped ? "!" : "");
 }
 
-static void cost_cell(json_t *c, char *out, size_t size)
+/* "1.04>1.43 +23% [+11,+28]": the medians, then the judged change of the p10 and its interval. */
+static void cost_cell(json_t *c, bool tripped, char *out, size_t size)
 {
-	json_t *b = json_object_get(c, "base"), *n = json_object_get(c, "new");
-	double lo = json_number_value(json_array_get(json_object_get(c, "interval_pct"), 0));
-	double hi = json_number_value(json_array_get(json_object_get(c, "interval_pct"), 1));
-	int written = snprintf(out, size, "%.2f>%.2f p10 %+.0f%%", number(b, "median"), number(n, "median"),
+	json_t *b = json_object_get(c, "base"), *n = json_object_get(c, "new"), *iv = json_object_get(c, "interval_pct");
+	int written = snprintf(out, size, "%.2f>%.2f %+.0f%%", number(b, "median"), number(n, "median"),
 			       number(c, "judged_pct"));
-	if (json_is_number(json_array_get(json_object_get(c, "interval_pct"), 0)) && written > 0 &&
-	    (size_t)written < size)
-		snprintf(out + written, size - (size_t)written, " [%+.0f,%+.0f]", lo, hi);
+	if (json_is_number(json_array_get(iv, 0)) && written > 0 && (size_t)written < size)
+		written += snprintf(out + written, size - (size_t)written, " [%+.0f,%+.0f]",
+				    json_number_value(json_array_get(iv, 0)), json_number_value(json_array_get(iv, 1)));
+	if (tripped && written > 0 && (size_t)written < size)
+		snprintf(out + written, size - (size_t)written, "!");
 }
 
-static const char *method_title(json_t *m, char *out, size_t size)
+/* Whether a gate on metric tripped for this method. */
+static bool tripped_on(json_t *m, const char *metric)
 {
-	if (strcmp(string(m, "label"), string(m, "base_label")))
-		snprintf(out, size, "%s (was %s)", string(m, "label"), string(m, "base_label"));
-	else
-		snprintf(out, size, "%s", string(m, "label"));
-	return out;
+	size_t i;
+	json_t *g;
+	json_array_foreach(json_object_get(m, "gates"), i, g)
+		if (!strcmp(string(g, "metric"), metric) && !strcmp(string(g, "result"), "tripped"))
+			return true;
+	return false;
+}
+
+/* The cells of one method's row. */
+struct row {
+	char psnr[72], ssim[72], flip[72], flicker[72], gpu[96];
+};
+
+static void row_of(json_t *m, struct row *r)
+{
+	json_t *mt = json_object_get(m, "metrics");
+	quality_cell(json_object_get(mt, "psnr"), 2, true, tripped_on(m, "psnr"), r->psnr, sizeof r->psnr);
+	quality_cell(json_object_get(mt, "ssim"), 4, false, tripped_on(m, "ssim"), r->ssim, sizeof r->ssim);
+	quality_cell(json_object_get(mt, "flip"), 4, false, tripped_on(m, "flip"), r->flip, sizeof r->flip);
+	quality_cell(json_object_get(mt, "flicker"), 3, false, tripped_on(m, "flicker"), r->flicker, sizeof r->flicker);
+	cost_cell(json_object_get(mt, "gpu_ms"), tripped_on(m, "gpu_ms"), r->gpu, sizeof r->gpu);
+}
+
+/* "was fxaa (paired by name): preset 12 -> 10, edge_threshold 0.166 -> 0.333", or "" when the label is
+ * the same in both runs. */
+static void pairing_note(json_t *m, char *out, size_t size)
+{
+	size_t used = 0, k;
+	json_t *pc;
+	out[0] = '\0';
+	if (!strcmp(string(m, "label"), string(m, "base_label")))
+		return;
+	used = (size_t)snprintf(out, size, "was %s (paired by %s)", string(m, "base_label"), string(m, "paired_by"));
+	json_array_foreach(json_object_get(m, "params_changed"), k, pc) {
+		char *bv = json_dumps(json_object_get(pc, "base"), JSON_ENCODE_ANY | JSON_REAL_PRECISION(6));
+		char *nv = json_dumps(json_object_get(pc, "new"), JSON_ENCODE_ANY | JSON_REAL_PRECISION(6));
+		if (used < size)
+			used += (size_t)snprintf(out + used, size - used, "%s %s %s -> %s", k ? "," : ":",
+						 string(pc, "param"), bv ? bv : "?", nv ? nv : "?");
+		free(bv);
+		free(nv);
+	}
 }
 
 void aa_compare_print_table(const json_t *cmp_const, FILE *out)
@@ -86,56 +122,46 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 	char bn[512], nn[512];
 	run_name(json_object_get(cmp, "base"), bn, sizeof bn);
 	run_name(json_object_get(cmp, "new"), nn, sizeof nn);
-	fprintf(out, "BASE %s (%s)\nNEW  %s (%s)\n", string(json_object_get(cmp, "base"), "source"), bn,
+	fprintf(out, "BASE %s (%s)\nNEW  %s (%s)\ngates:", string(json_object_get(cmp, "base"), "source"), bn,
 		string(json_object_get(cmp, "new"), "source"), nn);
-	fprintf(out, "gates:");
-	size_t i, j, k;
+	size_t i, j;
 	json_t *g, *c, *m;
 	json_array_foreach(json_object_get(cmp, "gates"), i, g)
 		fprintf(out, "%s %s", i ? "," : "", json_string_value(g));
-	fprintf(out, "\ncost: p10 of the timed renders over the case's machine factor (%s); a change counts only when "
-		"its %.0f%% bootstrap interval is past the gate\n",
-		string(json_object_get(cmp, "cost_rule"), "machine_factor"),
+	fprintf(out, "\nquality: NEW and its change; GPU ms: median BASE>NEW, then the judged change of the p10 (over the "
+		"case's machine factor) and its %.0f%% interval; ! a tripped gate\n",
 		100 * number(json_object_get(cmp, "cost_rule"), "interval_level"));
 	json_array_foreach(json_object_get(cmp, "cases"), i, c) {
 		fprintf(out, "\ncase %s", string(c, "id"));
 		json_t *mf = json_object_get(json_object_get(c, "machine_factor"), "gpu_ms");
-		if (isfinite(number(mf, "value")) && number(mf, "value") != 1.0)
-			fprintf(out, " (machine factor x%.2f: the methods of this case ran that much %s in NEW)",
-				number(mf, "value"), number(mf, "value") > 1 ? "slower" : "faster");
+		if (isfinite(number(mf, "value")))
+			fprintf(out, "  (machine factor x%.2f)", number(mf, "value"));
 		json_t *fc = json_object_get(c, "frames_changed");
 		if (fc)
-			fprintf(out, " (frames %lld -> %lld)", json_integer_value(json_object_get(fc, "base")),
+			fprintf(out, "  (frames %lld -> %lld)", json_integer_value(json_object_get(fc, "base")),
 				json_integer_value(json_object_get(fc, "new")));
-		fprintf(out, "\n  %-30s %-22s %-24s %-24s %-22s %-32s %s\n", "method", "PSNR dB", "SSIM", "FLIP",
-			"flicker", "GPU ms median, judged change [90%]", "MB");
+		int width = 6;
+		json_array_foreach(json_object_get(c, "methods"), j, m)
+			if ((int)strlen(string(m, "label")) > width)
+				width = (int)strlen(string(m, "label"));
+		fprintf(out, "\n  %-*s  %-16s %-17s %-17s %-15s %-26s %s\n", width, "method", "PSNR dB", "SSIM", "FLIP",
+			"flicker", "GPU ms", "MB");
 		json_array_foreach(json_object_get(c, "methods"), j, m) {
-			json_t *mt = json_object_get(m, "metrics");
-			char title[300], psnr[100], ssim[100], flip[100], flicker[100], gpu[120];
-			quality_cell(json_object_get(mt, "psnr"), 2, true, psnr, sizeof psnr);
-			quality_cell(json_object_get(mt, "ssim"), 4, false, ssim, sizeof ssim);
-			quality_cell(json_object_get(mt, "flip"), 4, false, flip, sizeof flip);
-			quality_cell(json_object_get(mt, "flicker"), 3, false, flicker, sizeof flicker);
-			cost_cell(json_object_get(mt, "gpu_ms"), gpu, sizeof gpu);
-			json_t *mem = json_object_get(mt, "memory_bytes");
-			fprintf(out, "  %-30s %-22s %-24s %-24s %-22s %-32s %.2f %+.0f%%\n",
-				method_title(m, title, sizeof title), psnr, ssim, flip, flicker, gpu,
-				number(mem, "new") / 1048576.0, isfinite(number(mem, "change_pct")) ? number(mem, "change_pct") : 0.0);
-			json_t *pc;
-			json_array_foreach(json_object_get(m, "params_changed"), k, pc) {
-				char *bv = json_dumps(json_object_get(pc, "base"), JSON_ENCODE_ANY);
-				char *nv = json_dumps(json_object_get(pc, "new"), JSON_ENCODE_ANY);
-				fprintf(out, "  %-30s   parameter %s: %s -> %s\n", "", string(pc, "param"), bv ? bv : "?",
-					nv ? nv : "?");
-				free(bv);
-				free(nv);
-			}
+			struct row r;
+			char note[600];
+			row_of(m, &r);
+			fprintf(out, "  %-*s  %-16s %-17s %-17s %-15s %-26s %.2f\n", width, string(m, "label"), r.psnr, r.ssim,
+				r.flip, r.flicker, r.gpu,
+				number(json_object_get(json_object_get(m, "metrics"), "memory_bytes"), "new") / 1048576.0);
+			pairing_note(m, note, sizeof note);
+			if (note[0])
+				fprintf(out, "  %-*s  %s\n", width, "", note);
 		}
 		json_t *u = json_object_get(c, "unpaired");
 		json_array_foreach(json_object_get(u, "base"), j, m)
-			fprintf(out, "  %-30s only in BASE: not compared\n", json_string_value(m));
+			fprintf(out, "  %s: only in BASE, not compared\n", json_string_value(m));
 		json_array_foreach(json_object_get(u, "new"), j, m)
-			fprintf(out, "  %-30s only in NEW: not compared\n", json_string_value(m));
+			fprintf(out, "  %s: only in NEW, not compared\n", json_string_value(m));
 	}
 	json_t *miss = json_object_get(cmp, "missing");
 	json_array_foreach(json_object_get(miss, "new"), i, g)
@@ -148,7 +174,8 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 		json_integer_value(json_object_get(counts, "held")), json_integer_value(json_object_get(counts, "tripped")),
 		json_integer_value(json_object_get(counts, "unknown")));
 	json_array_foreach(json_object_get(cmp, "tripped"), i, g)
-		fprintf(out, "  tripped: %s %s: %s\n", string(g, "case"), string(g, "method"), string(g, "message"));
+		fprintf(out, "  tripped %s in %s, %s: %s\n", string(g, "gate"), string(g, "case"), string(g, "method"),
+			string(g, "message"));
 }
 
 /* ------------------------------------------------------------------------------------------ JUnit */
@@ -245,6 +272,15 @@ int aa_compare_write_junit(const json_t *cmp_const, FILE *o)
 
 /* ------------------------------------------------------------------------------------------ markdown */
 
+/* Inside a code span nothing is unescaped, so only what would end the span or the table is changed. */
+static void md_code(FILE *o, const char *s)
+{
+	fputc('`', o);
+	for (; *s; s++)
+		fputc(*s == '`' || *s == '|' || *s == '\n' ? ' ' : *s, o);
+	fputc('`', o);
+}
+
 /* Table cells must not break the table: '|' and newlines are escaped or dropped. */
 static void md_text(FILE *o, const char *s)
 {
@@ -269,20 +305,19 @@ int aa_compare_write_markdown(const json_t *cmp_const, FILE *o)
 	run_name(json_object_get(cmp, "base"), bn, sizeof bn);
 	run_name(json_object_get(cmp, "new"), nn, sizeof nn);
 	fprintf(o, "### aalab compare: %s\n\n", tripped ? "**FAILED**, a gate tripped" : "passed, every gate held");
-	fputs("BASE `", o);
-	md_text(o, bn);
-	fputs("` \xe2\x86\x92 NEW `", o);
-	md_text(o, nn);
-	fprintf(o, "`: %lld gates checked, %lld held, **%lld tripped**, %lld not judged.\n\n",
+	fputs("BASE ", o);
+	md_code(o, bn);
+	fputs(" \xe2\x86\x92 NEW ", o);
+	md_code(o, nn);
+	fprintf(o, ": %lld gates checked, %lld held, **%lld tripped**, %lld not judged.\n\n",
 		json_integer_value(json_object_get(counts, "gates")), json_integer_value(json_object_get(counts, "held")),
 		json_integer_value(json_object_get(counts, "tripped")), json_integer_value(json_object_get(counts, "unknown")));
 	size_t i, j;
 	json_t *g, *c, *m;
 	fputs("Gates:", o);
 	json_array_foreach(json_object_get(cmp, "gates"), i, g) {
-		fputs(i ? ", `" : " `", o);
-		md_text(o, json_string_value(g));
-		fputs("`", o);
+		fputs(i ? ", " : " ", o);
+		md_code(o, json_string_value(g));
 	}
 	fputs(". A cost change counts only when its bootstrap interval (p10 of the timed renders) is past the gate.\n\n",
 	      o);
@@ -293,9 +328,9 @@ int aa_compare_write_markdown(const json_t *cmp_const, FILE *o)
 			md_text(o, string(g, "case"));
 			fputs(" | ", o);
 			md_text(o, string(g, "method"));
-			fputs(" | `", o);
-			md_text(o, string(g, "gate"));
-			fputs("` | ", o);
+			fputs(" | ", o);
+			md_code(o, string(g, "gate"));
+			fputs(" | ", o);
 			md_text(o, string(g, "message"));
 			fputs(" |\n", o);
 		}
@@ -304,24 +339,26 @@ int aa_compare_write_markdown(const json_t *cmp_const, FILE *o)
 	json_array_foreach(json_object_get(cmp, "cases"), i, c) {
 		fputs("<details><summary>", o);
 		md_text(o, string(c, "id"));
-		fputs("</summary>\n\n| method | PSNR dB | SSIM | FLIP | flicker | GPU ms (median), p10 change [interval] | MB |\n"
+		fputs("</summary>\n\n| method | PSNR dB | SSIM | FLIP | flicker | GPU ms: median, judged change [interval] | MB |\n"
 		      "| --- | --- | --- | --- | --- | --- | --- |\n", o);
 		json_array_foreach(json_object_get(c, "methods"), j, m) {
-			json_t *mt = json_object_get(m, "metrics");
-			char title[300], psnr[100], ssim[100], flip[100], flicker[100], gpu[120];
-			quality_cell(json_object_get(mt, "psnr"), 2, true, psnr, sizeof psnr);
-			quality_cell(json_object_get(mt, "ssim"), 4, false, ssim, sizeof ssim);
-			quality_cell(json_object_get(mt, "flip"), 4, false, flip, sizeof flip);
-			quality_cell(json_object_get(mt, "flicker"), 3, false, flicker, sizeof flicker);
-			cost_cell(json_object_get(mt, "gpu_ms"), gpu, sizeof gpu);
+			struct row r;
+			char note[600];
+			row_of(m, &r);
+			pairing_note(m, note, sizeof note);
 			fputs("| ", o);
-			md_text(o, method_title(m, title, sizeof title));
-			const char *cells[5] = {psnr, ssim, flip, flicker, gpu};
+			md_text(o, string(m, "label"));
+			if (note[0]) {
+				fputs("<br>", o);
+				md_text(o, note);
+			}
+			const char *cells[5] = {r.psnr, r.ssim, r.flip, r.flicker, r.gpu};
 			for (int k = 0; k < 5; k++) {
 				fputs(" | ", o);
 				md_text(o, cells[k]);
 			}
-			fprintf(o, " | %.2f |\n", number(json_object_get(mt, "memory_bytes"), "new") / 1048576.0);
+			fprintf(o, " | %.2f |\n",
+				number(json_object_get(json_object_get(m, "metrics"), "memory_bytes"), "new") / 1048576.0);
 		}
 		fputs("\n</details>\n\n", o);
 	}
