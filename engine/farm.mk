@@ -9,3 +9,12 @@ libaaengine_a_SOURCES += engine/suite_files.c
 AM_CPPFLAGS += -DAA_SOURCE_SUITE_DIR='"$(abs_top_srcdir)/suites"' -DAA_INSTALLED_SUITE_DIR='"$(pkgdatadir)/suites"'
 aalab_SOURCES += client/suite_table.c client/cmd_compare.c client/cmd_suites.c
 aalabd_SOURCES += daemon/farm_routes.h daemon/farm_routes.c
+# the suites `aalab run NAME` finds, installed beside the scenes
+suitesdir = $(pkgdatadir)/suites
+dist_suites_DATA = suites/smoke.json suites/full.json
+
+check_PROGRAMS += tests/unit/test_farm
+tests_unit_test_farm_SOURCES = tests/unit/test_farm.c
+tests_unit_test_farm_CFLAGS = $(TEST_CFLAGS)
+tests_unit_test_farm_LDADD = $(TEST_LIBS)
+TESTS += tests/unit/test_farm
