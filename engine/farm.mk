@@ -18,3 +18,7 @@ tests_unit_test_farm_SOURCES = tests/unit/test_farm.c
 tests_unit_test_farm_CFLAGS = $(TEST_CFLAGS)
 tests_unit_test_farm_LDADD = $(TEST_LIBS)
 TESTS += tests/unit/test_farm
+
+FARM_SCRIPT_TESTS = tests/farm_cli.sh tests/farm_cost.sh
+TESTS += $(FARM_SCRIPT_TESTS)
+EXTRA_DIST += $(FARM_SCRIPT_TESTS) tests/junit.xsd
