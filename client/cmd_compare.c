@@ -158,7 +158,7 @@ int cmd_compare(int argc, char **argv)
 	    (markdown && write_output("markdown", markdown, cmp, aa_compare_write_markdown)))
 		status = AA_EXIT_USAGE;
 	if (print_json) {
-		json_dumpf(cmp, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+		json_dumpf(cmp, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 	} else {
 		aa_compare_print_table(cmp, stdout);

@@ -153,12 +153,10 @@ static json_t *compare_with(struct store *s, struct job *job, const char *baseli
 	pthread_mutex_unlock(&s->lock);
 	if (rc)
 		return NULL;
-	char base_source[40], new_source[40];
-	snprintf(base_source, sizeof base_source, "job %s", base_id);
-	snprintf(new_source, sizeof new_source, "job %s", new_id);
 	struct aa_compare_options o = *opts;
-	o.base_source = base_source;
-	o.new_source = new_source;
+	/* the ids, as `aalab compare BASE NEW` given job ids names them: the same JSON either way */
+	o.base_source = base_id;
+	o.new_source = new_id;
 	json_t *base = load_results(s, base_id, err), *fresh = base ? load_results(s, new_id, err) : NULL;
 	json_t *cmp = fresh ? aa_compare_results(base, fresh, &o, err) : NULL;
 	json_decref(base);

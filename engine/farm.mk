@@ -22,3 +22,6 @@ TESTS += tests/unit/test_farm
 FARM_SCRIPT_TESTS = tests/farm_cli.sh tests/farm_cost.sh
 TESTS += $(FARM_SCRIPT_TESTS)
 EXTRA_DIST += $(FARM_SCRIPT_TESTS) tests/junit.xsd
+FARM_DAEMON_TESTS = tests/integration/daemon_farm.py tests/integration/dashboard_trends.sh
+TESTS += $(FARM_DAEMON_TESTS)
+EXTRA_DIST += $(FARM_DAEMON_TESTS)
