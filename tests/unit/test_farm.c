@@ -385,6 +385,35 @@ static void test_compare_slowdown(void **state)
 	json_decref(cmp);
 }
 
+/* A change whose interval straddles the gate: its upper end is past +50%, its lower end is not, so the
+ * gate holds; a gate below the lower end trips. */
+static void test_compare_interval(void **state)
+{
+	(void)state;
+	struct aa_error err;
+	json_t *a = suite_doc(two_cases, 1, 1, "fxaa", 20.0, 1, 1), *b = suite_doc(two_cases, 1, 1, "fxaa", 20.0, 1, 1);
+	json_t *timed = json_object_get(json_array_get(json_object_get(json_array_get(json_object_get(b, "cases"), 0),
+								      "methods"), 2), "timed_renders");
+	for (size_t i = 0; i < json_array_size(timed); i++) { /* fxaa's renders spread from 2.2 to 9 ms */
+		double t = 2.2 + 6.8 * (double)((i * 7) % 15) / 14.0;
+		json_object_set_new(json_array_get(timed, i), "gpu_ms", json_real(t));
+	}
+	json_t *cmp = compare(a, b, (const char *const[]){"gpu_ms > +50%", "gpu_ms > +5%", "gpu_ms < -50%", NULL},
+			      false, &err);
+	json_t *held = gate_of(cmp, 0, "fxaa", "gpu_ms");
+	json_t *gates = json_object_get(json_array_get(json_object_get(json_array_get(json_object_get(cmp, "cases"), 0),
+									 "methods"), 2), "gates");
+	double change = json_real_value(json_object_get(held, "change"));
+	double lo = json_real_value(json_array_get(json_object_get(held, "interval"), 0));
+	double hi = json_real_value(json_array_get(json_object_get(held, "interval"), 1));
+	if (!(change > 5 && lo > 5 && lo < 50 && hi > 50))
+		fail_msg("the test needs an interval across +50%%: change %.1f, interval %.1f to %.1f", change, lo, hi);
+	assert_string_equal(json_string_value(json_object_get(held, "result")), "held");
+	assert_string_equal(json_string_value(json_object_get(json_array_get(gates, 1), "result")), "tripped");
+	assert_string_equal(json_string_value(json_object_get(json_array_get(gates, 2), "result")), "held");
+	json_decref(cmp);
+}
+
 static void test_compare_pairing_and_quality(void **state)
 {
 	(void)state;
@@ -484,6 +513,7 @@ int main(void)
 		cmocka_unit_test(test_gates),
 		cmocka_unit_test(test_compare_self_and_noise),
 		cmocka_unit_test(test_compare_slowdown),
+		cmocka_unit_test(test_compare_interval),
 		cmocka_unit_test(test_compare_pairing_and_quality),
 		cmocka_unit_test(test_compare_refusals),
 	};
