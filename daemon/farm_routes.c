@@ -279,7 +279,7 @@ static int filter_from_query(const struct query *q, struct farm_filter *f, struc
 			snprintf(f->suite, sizeof f->suite, "%s", q->value[i]);
 			f->has_suite = true;
 		} else if (!strcmp(q->key[i], "state")) {
-			if (strlen(q->value[i]) >= sizeof f->state) {
+			if (!job_state_known(q->value[i]) || strlen(q->value[i]) >= sizeof f->state) {
 				fail(out, 400, "state: %s%s", "expected queued, running, done, failed or cancelled", "");
 				return -1;
 			}
