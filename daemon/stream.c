@@ -218,7 +218,8 @@ static void send_event(struct conn *c, char *line)
 	}
 	const struct cached_frame *frame = have ? frame_get(c, path, &st) : NULL;
 	if (frame) {
-		if (c->watch_frames != FRAMES_PNG) {
+		/* raw RGBA16F has no header: a suite's event carries its case's size, others the job's */
+		if (c->watch_frames == FRAMES_RGBA8 || (c->watch_frames == FRAMES_RGBA16F && !json_object_get(ev, "width"))) {
 			json_object_set_new(ev, "width", json_integer(frame->width));
 			json_object_set_new(ev, "height", json_integer(frame->height));
 		}

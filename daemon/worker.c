@@ -88,6 +88,10 @@ static void add_case(const struct job *job, const struct aa_event *ev, json_t *o
 	aa_case_id(&job->spec, ev->case_index, id, sizeof id);
 	json_object_set_new(o, "case", json_string(id));
 	json_object_set_new(o, "case_index", json_integer(ev->case_index));
+	if (ev->type != AA_EVENT_JOB_STARTED && ev->result) { /* the case's size: raw frames streamed need it */
+		json_object_set_new(o, "width", json_integer(ev->result->spec.width));
+		json_object_set_new(o, "height", json_integer(ev->result->spec.height));
+	}
 	if (ev->type == AA_EVENT_JOB_STARTED)
 		json_object_set_new(o, "cases", json_integer(job->spec.case_count));
 }
