@@ -47,6 +47,14 @@ grep -q "Labels" "$TMP/a/cases/thin-wires_default_64x36/report.html" && pass "a 
 
 AALAB_SUITE_DIR="$TMP/suites" expect_status 0 "a suite is found by name" -- "$AALAB" run farmtest --no-images \
 	--quiet --out "$TMP/by-name"
+# the shipped suites are valid jobs (full.json once had 17 methods, one over a job's limit, unnoticed)
+AALAB_SUITE_DIR="$top_srcdir/suites" expect_status 0 "aalab suites" -- "$AALAB" suites --json
+/usr/bin/python3 -c '
+import json, sys
+s = {x["name"]: x for x in json.load(open(sys.argv[1]))}
+assert all("error" not in x for x in s.values()), s
+assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 14) and s["full"]["cases"] == 16, s
+' "$TMP/out" && pass "suites/smoke.json and suites/full.json are valid jobs" || { fail "shipped suites"; cat "$TMP/out"; }
 expect_status 2 "an unknown suite name" -- "$AALAB" run no-such-suite --quiet --out "$TMP/x"
 expect_stderr "no suite of that name \(suites:.*smoke" "says which suites exist"
 expect_status 2 "scene and scenes together" -- "$AALAB" run "$TMP/suites/farmtest.json" --scene hard-edges --quiet \
