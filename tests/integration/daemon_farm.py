@@ -3,7 +3,8 @@
 and filter `list`, `aalab list` and /v1/jobs; a job's baseline (a job id, or the latest done job of the
 same suite with a label) gives a verdict in its status; /v1/jobs/ID/compare returns exactly the JSON of
 `aalab compare --json` of the same two jobs; /v1/series lists each (case, method, metric) over the
-labelled jobs of a suite in submission order; `aalab run` of a suite through aalabd downloads it whole."""
+labelled jobs of a suite in submission order; a restart keeps labels, verdicts, filters, series and compare;
+`aalab run` of a suite through aalabd downloads it whole."""
 import json
 import os
 import subprocess
@@ -139,6 +140,25 @@ def main():
         check(status == 400 and "suite" in body, "series needs a suite")
         status, body = get_json(d, "/v1/series?suite=farmtest&metric=speed")
         check(status == 400 and "metric" in body, "series of an unknown metric: 400")
+
+        # a restart keeps what farms read back: labels, verdicts, filters, series and compare from disk
+        status, series_before = get_json(d, "/v1/series?suite=farmtest&label=branch=main&metric=flip")
+        c.close()
+        check(d.stop() == 0, "aalabd stops")
+        d.start()
+        c = d.connect()
+        st = c.request({"op": "status", "job": j3["id"]})["job"]
+        check(st["spec"].get("labels") == {"commit": "c3", "branch": "main"} and st.get("compare") == j3["compare"],
+              "after a restart a job keeps its labels and its verdict (%s)" % st.get("compare", {}).get("verdict"))
+        r = c.request({"op": "list", "labels": {"branch": "main"}, "suite": "farmtest"})
+        check([j["id"] for j in r["jobs"]] == [j1["id"], j2["id"], j3["id"]], "and list still filters by them")
+        status, s = get_json(d, "/v1/series?suite=farmtest&label=branch=main&metric=flip")
+        check(status == 200 and s == series_before and s["series"], "the series are the same after the restart")
+        status, body = get_json(d, "/v1/jobs/%s/compare?baseline=%s" % (j3["id"], j1["id"]))
+        check(status == 200 and body == http_cmp, "and so is /v1/jobs/ID/compare")
+        j5 = submit(c, SUITE, {"commit": "c5", "branch": "main"}, "latest:branch=main")
+        check(j5.get("compare", {}).get("job") == j3["id"], "latest:branch=main after a restart: the latest job (%s)"
+              % j5.get("compare", {}).get("job"))
 
         out_dir = os.path.join(d.tmp, "remote")
         suite_file = os.path.join(d.tmp, "suite.json")
