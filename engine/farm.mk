@@ -11,7 +11,7 @@ aalab_SOURCES += client/suite_table.c client/cmd_compare.c client/cmd_suites.c
 aalabd_SOURCES += daemon/farm_routes.h daemon/farm_routes.c
 # the suites `aalab run NAME` finds, installed beside the scenes
 suitesdir = $(pkgdatadir)/suites
-dist_suites_DATA = suites/smoke.json suites/full.json
+dist_suites_DATA = suites/smoke.json suites/full.json suites/hard.json
 
 check_PROGRAMS += tests/unit/test_farm
 tests_unit_test_farm_SOURCES = tests/unit/test_farm.c

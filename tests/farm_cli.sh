@@ -53,8 +53,8 @@ AALAB_SUITE_DIR="$top_srcdir/suites" expect_status 0 "aalab suites" -- "$AALAB" 
 import json, sys
 s = {x["name"]: x for x in json.load(open(sys.argv[1]))}
 assert all("error" not in x for x in s.values()), s
-assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 14) and s["full"]["cases"] == 16, s
-' "$TMP/out" && pass "suites/smoke.json and suites/full.json are valid jobs" || { fail "shipped suites"; cat "$TMP/out"; }
+assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 14) and s["full"]["cases"] == 16 and s["hard"]["cases"] == 7, s
+' "$TMP/out" && pass "the shipped suites (smoke, full, hard) are valid jobs" || { fail "shipped suites"; cat "$TMP/out"; }
 expect_status 2 "an unknown suite name" -- "$AALAB" run no-such-suite --quiet --out "$TMP/x"
 expect_stderr "no suite of that name \(suites:.*smoke" "says which suites exist"
 expect_status 2 "scene and scenes together" -- "$AALAB" run "$TMP/suites/farmtest.json" --scene hard-edges --quiet \
