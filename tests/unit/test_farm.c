@@ -348,11 +348,13 @@ static void test_compare_self_and_noise(void **state)
 	json_decref(cmp);
 	/* judged as measured (--raw-cost), the same slower machine trips every cost gate */
 	struct aa_compare_options o = {.raw_cost = true};
-	cmp = aa_compare_results(suite_doc(two_cases, 2, 1, "fxaa", 20.0, 1, 1),
-				 suite_doc(two_cases, 2, 7, "fxaa", 20.0, 1, 1.6), &o, &err);
+	json_t *base = suite_doc(two_cases, 2, 1, "fxaa", 20.0, 1, 1), *slow = suite_doc(two_cases, 2, 7, "fxaa", 20.0, 1, 1.6);
+	cmp = aa_compare_results(base, slow, &o, &err);
 	assert_int_equal(aa_compare_tripped(cmp), 1);
 	assert_string_equal(json_string_value(json_object_get(gate_of(cmp, 0, "none", "gpu_ms"), "result")), "tripped");
 	json_decref(cmp);
+	json_decref(base);
+	json_decref(slow);
 }
 
 static void test_compare_slowdown(void **state)
