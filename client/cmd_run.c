@@ -140,7 +140,7 @@ int cmd_run(int argc, char **argv)
 	struct aa_error err = {0};
 	int rc = aa_job_spec_from_json(job, &spec, &err);
 	if (rc) {
-		fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
+		aa_print_error("run", &err);
 		json_decref(job);
 		goto out;
 	}
@@ -220,7 +220,7 @@ int cmd_run(int argc, char **argv)
 		if (ro.failed_writes)
 			fprintf(stderr, "aalab run: writing images failed: %s\n", ro.write_err.message);
 		else
-			fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
+			aa_print_error("run", &err);
 		status = err.code == AA_ERR_INVALID || err.code == AA_ERR_NOT_FOUND || err.code == AA_ERR_LIMIT
 				 ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;

@@ -35,7 +35,7 @@ int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, in
 static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 {
 	int size = r->plan.shadow_map ? AA_SHADOW_MAP_SIZE : 1;
-	if (aa_gpu_image_create(r->gpu, &r->shadow_map, size, size, AA_DEPTH_FORMAT,
+	if (aa_gpu_image_create(r->gpu, &r->shadow_map, size, size, AA_SHADOW_FORMAT,
 				VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
 				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err))
 		return -1;
@@ -52,7 +52,7 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 		return -1;
 	if (!r->plan.shadow_map)
 		return 0;
-	struct aa_gpu_pass_desc pd = {.depth_format = AA_DEPTH_FORMAT, .depth_readable = true, .samples = 1};
+	struct aa_gpu_pass_desc pd = {.depth_format = AA_SHADOW_FORMAT, .depth_readable = true, .samples = 1};
 	struct aa_gpu_image *att[1] = {&r->shadow_map};
 	return aa_gpu_render_pass_create(r->gpu, &pd, &r->shadow_pass, err) ||
 	       aa_gpu_framebuffer_create(r->gpu, r->shadow_pass, att, 1, &r->shadow_framebuffer, err);
@@ -538,18 +538,11 @@ static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
 static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, int light, struct aa_frame_uniforms *u)
 {
 	const struct aa_scene *s = r->scene;
-	struct aa_box receivers = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
-	for (int o = 0; o < s->object_count; o++) {
-		receivers.min = v3(fminf(receivers.min.x, r->bounds[o].min.x), fminf(receivers.min.y, r->bounds[o].min.y),
-				   fminf(receivers.min.z, r->bounds[o].min.z));
-		receivers.max = v3(fmaxf(receivers.max.x, r->bounds[o].max.x), fmaxf(receivers.max.y, r->bounds[o].max.y),
-				   fmaxf(receivers.max.z, r->bounds[o].max.z));
-	}
 	const float *d = s->lights[light].direction;
 	struct aa_shadow_fit_input in = {
 		.camera = *camera, .aspect = (float)r->width / (float)r->height,
-		.light_direction = v3(d[0], d[1], d[2]), .receivers = receivers, .casters = r->bounds,
-		.caster_count = s->object_count, .tile_size = AA_SHADOW_TILE_SIZE,
+		.light_direction = v3(d[0], d[1], d[2]), .boxes = r->bounds, .box_count = s->object_count,
+		.tile_size = AA_SHADOW_TILE_SIZE,
 	};
 	aa_shadow_fit(&in, &r->shadow_fit);
 	const struct aa_shadow_fit *f = &r->shadow_fit;
@@ -562,10 +555,10 @@ static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, in
 		}
 		u->shadow_cascade_scale[i][3] = 0.5f / AA_SHADOW_TILE_SIZE;
 		u->shadow_cascade_offset[i][3] = c->texel * c->scale[2];
-		if (i + 1 < AA_SHADOW_CASCADES)
-			u->shadow_splits[i] = f->splits[i + 1];
+		if (i + 1 < AA_SHADOW_CASCADES) /* beyond the cascades in use: never reached */
+			u->shadow_splits[i] = isfinite(f->splits[i + 1]) ? f->splits[i + 1] : 3.0e38f;
 	}
-	u->shadow_splits[3] = f->splits[AA_SHADOW_CASCADES];
+	u->shadow_splits[3] = isfinite(f->splits[AA_SHADOW_CASCADES]) ? f->splits[AA_SHADOW_CASCADES] : 3.0e38f;
 	/* the first cascade as one matrix, for anything that reads the old single map's field */
 	const struct aa_shadow_cascade *c0 = &f->cascades[0];
 	mat4 fit = mat4_identity();
@@ -724,7 +717,7 @@ void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
 			  &clear, 1);
 	bool *visible = malloc((size_t)(r->scene->object_count ? r->scene->object_count : 1) * sizeof *visible);
-	for (int i = 0; i < AA_SHADOW_CASCADES && visible; i++) {
+	for (int i = 0; i < r->shadow_fit.cascade_count && visible; i++) {
 		VkViewport viewport = {(float)((i & 1) * AA_SHADOW_TILE_SIZE), (float)((i >> 1) * AA_SHADOW_TILE_SIZE),
 				       AA_SHADOW_TILE_SIZE, AA_SHADOW_TILE_SIZE, 0.0f, 1.0f};
 		VkRect2D scissor = {{(i & 1) * AA_SHADOW_TILE_SIZE, (i >> 1) * AA_SHADOW_TILE_SIZE},

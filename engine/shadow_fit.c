@@ -4,9 +4,9 @@
 #include <math.h>
 #include <string.h>
 
-/* How the splits lean between uniform (0) and logarithmic (1) spacing: mostly logarithmic, so the
- * cascade at the camera is small and its shadows fine. */
-#define SPLIT_LAMBDA 0.9f
+/* How the splits lean between uniform (0) and logarithmic (1) spacing. Logarithmic: each cascade is the
+ * same factor deeper than the last, so a shadow texel covers about as many pixels in every cascade. */
+#define SPLIT_LAMBDA 1.0f
 
 struct aa_box aa_box_transform(mat4 m, const float lo[3], const float hi[3])
 {
@@ -33,6 +33,49 @@ static float quantize(float x, bool up)
 	return exp2f((up ? ceilf(e) : floorf(e)) / 4.0f);
 }
 
+/* The view depths of the part of a box the camera sees: the box's faces clipped by the view frustum
+ * (Sutherland-Hodgman against its side planes and near/far). False when none of it is in view. */
+static bool visible_depths(const struct aa_box *box, const struct aa_camera *cam, vec3 right, vec3 up, vec3 forward,
+			   float tan_x, float tan_y, float half_w, float half_h, float *lo, float *hi)
+{
+	static const int faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+	bool ortho = cam->projection == AA_PROJECTION_ORTHOGRAPHIC, any = false;
+	vec3 corner[8];
+	for (int c = 0; c < 8; c++) {
+		vec3 p = v3_sub(v3(c & 1 ? box->max.x : box->min.x, c & 2 ? box->max.y : box->min.y,
+				   c & 4 ? box->max.z : box->min.z), cam->position);
+		corner[c] = v3(v3_dot(p, right), v3_dot(p, up), v3_dot(p, forward)); /* view space, z = depth */
+	}
+	for (int f = 0; f < 6; f++) {
+		vec3 poly[16], next[16];
+		int n = 4;
+		for (int k = 0; k < 4; k++)
+			poly[k] = corner[faces[f][k]];
+		for (int plane = 0; plane < 6 && n > 0; plane++) {
+			int m = 0;
+			for (int k = 0; k < n; k++) {
+				vec3 a = poly[k], b = poly[(k + 1) % n];
+				float ga, gb; /* >= 0 inside */
+#define SIDE(p) (plane == 0 ? (ortho ? half_w : (p).z * tan_x) - (p).x : plane == 1 ? (ortho ? half_w : (p).z * tan_x) + (p).x 		 : plane == 2 ? (ortho ? half_h : (p).z * tan_y) - (p).y : plane == 3 ? (ortho ? half_h : (p).z * tan_y) + (p).y 		 : plane == 4 ? (p).z - cam->near_plane : cam->far_plane - (p).z)
+				ga = SIDE(a), gb = SIDE(b);
+#undef SIDE
+				if (ga >= 0 && m < 16)
+					next[m++] = a;
+				if ((ga >= 0) != (gb >= 0) && m < 16)
+					next[m++] = v3_lerp(a, b, ga / (ga - gb));
+			}
+			n = m;
+			for (int k = 0; k < n; k++)
+				poly[k] = next[k];
+		}
+		for (int k = 0; k < n; k++) {
+			*lo = fminf(*lo, poly[k].z), *hi = fmaxf(*hi, poly[k].z);
+			any = true;
+		}
+	}
+	return any;
+}
+
 bool aa_shadow_cascade_sees(const struct aa_shadow_fit *fit, int i, const struct aa_box *box)
 {
 	const struct aa_shadow_cascade *c = &fit->cascades[i];
@@ -55,15 +98,23 @@ void aa_shadow_fit(const struct aa_shadow_fit_input *in, struct aa_shadow_fit *o
 	lv.m[2] = z.x, lv.m[6] = z.y, lv.m[10] = z.z;
 	out->light_view = lv;
 
-	/* the view depths that hold something to receive shadows */
+	/* the view depths where something in view can receive a shadow */
 	vec3 forward = v3_normalize(v3_sub(cam->target, cam->position));
+	vec3 right = v3_normalize(v3_cross(forward, cam->up)), up_view = v3_cross(right, forward);
+	float tan_y = tanf(cam->fov_y_degrees * 3.14159265f / 360.0f), tan_x = tan_y * in->aspect;
+	float half_h = 0.5f * cam->ortho_height, half_w = half_h * in->aspect;
 	float d_lo = INFINITY, d_hi = -INFINITY;
-	for (int c = 0; c < 8; c++) {
-		const struct aa_box *b = &in->receivers;
-		vec3 p = v3(c & 1 ? b->max.x : b->min.x, c & 2 ? b->max.y : b->min.y, c & 4 ? b->max.z : b->min.z);
-		float d = v3_dot(v3_sub(p, cam->position), forward);
-		d_lo = fminf(d_lo, d), d_hi = fmaxf(d_hi, d);
+	struct aa_box everything = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
+	for (int k = 0; k < in->box_count; k++) {
+		const struct aa_box *b = &in->boxes[k];
+		visible_depths(b, cam, right, up_view, forward, tan_x, tan_y, half_w, half_h, &d_lo, &d_hi);
+		everything.min = v3(fminf(everything.min.x, b->min.x), fminf(everything.min.y, b->min.y),
+				    fminf(everything.min.z, b->min.z));
+		everything.max = v3(fmaxf(everything.max.x, b->max.x), fmaxf(everything.max.y, b->max.y),
+				    fmaxf(everything.max.z, b->max.z));
 	}
+	if (!(d_hi >= d_lo)) /* nothing in view */
+		d_lo = cam->near_plane, d_hi = 2.0f * cam->near_plane;
 	float n = fmaxf(cam->near_plane, quantize(fmaxf(d_lo, cam->near_plane), false));
 	float f = fminf(cam->far_plane, quantize(fmaxf(d_hi, n * 1.01f), true));
 	if (!(f > n))
@@ -74,13 +125,13 @@ void aa_shadow_fit(const struct aa_shadow_fit_input *in, struct aa_shadow_fit *o
 	}
 	out->splits[0] = n, out->splits[AA_SHADOW_CASCADES] = f;
 
-	/* the receivers' own extent across the light: a cascade never needs more */
-	struct aa_box scene = light_box(lv, &in->receivers);
+	/* the scene's own extent across the light: a cascade never needs more */
+	struct aa_box scene = light_box(lv, &everything);
 	float scene_radius = quantize(0.5f * fmaxf(scene.max.x - scene.min.x, scene.max.y - scene.min.y), true);
 	vec3 scene_center = v3_scale(v3_add(scene.min, scene.max), 0.5f);
-	float tan_y = tanf(cam->fov_y_degrees * 3.14159265f / 360.0f), tan_x = tan_y * in->aspect;
 	float k2 = tan_x * tan_x + tan_y * tan_y;
-	for (int i = 0; i < AA_SHADOW_CASCADES; i++) {
+	out->cascade_count = AA_SHADOW_CASCADES;
+	for (int i = 0; i < out->cascade_count; i++) {
 		struct aa_shadow_cascade *c = &out->cascades[i];
 		float a = out->splits[i], b = out->splits[i + 1], along, radius;
 		if (cam->projection == AA_PROJECTION_ORTHOGRAPHIC) {
@@ -97,6 +148,9 @@ void aa_shadow_fit(const struct aa_shadow_fit_input *in, struct aa_shadow_fit *o
 		if (scene_radius < radius) { /* the whole scene is smaller: its box, fixed while nothing moves */
 			radius = scene_radius;
 			center = scene_center;
+			out->cascade_count = i + 1; /* and later cascades would only repeat it */
+			for (int k = i + 1; k <= AA_SHADOW_CASCADES; k++)
+				out->splits[k] = INFINITY;
 		}
 		radius = fmaxf(radius, 1e-3f);
 		c->texel = 2.0f * radius / (float)in->tile_size;
@@ -104,8 +158,8 @@ void aa_shadow_fit(const struct aa_shadow_fit_input *in, struct aa_shadow_fit *o
 		c->radius = radius;
 		/* depth: just the casters over this window */
 		float zn = -INFINITY, zf = INFINITY;
-		for (int k = 0; k < in->caster_count; k++) {
-			struct aa_box l = light_box(lv, &in->casters[k]);
+		for (int k = 0; k < in->box_count; k++) {
+			struct aa_box l = light_box(lv, &in->boxes[k]);
 			if (l.max.x < c->center.x - radius || l.min.x > c->center.x + radius || l.max.y < c->center.y - radius ||
 			    l.min.y > c->center.y + radius)
 				continue;

@@ -22,9 +22,8 @@ struct aa_shadow_fit_input {
 	struct aa_camera camera;
 	float aspect;            /* width / height of the frame */
 	vec3 light_direction;    /* where the light travels (normalised) */
-	struct aa_box receivers; /* everything drawn (the view depth range comes from it) */
-	const struct aa_box *casters; /* world boxes of the objects that cast shadows */
-	int caster_count;
+	const struct aa_box *boxes; /* world boxes of what is drawn: receivers, and casters */
+	int box_count;
 	int tile_size;           /* texels per side of each cascade's map */
 };
 
@@ -38,6 +37,7 @@ struct aa_shadow_cascade {
 
 struct aa_shadow_fit {
 	mat4 light_view;         /* world -> light space (a rotation) */
+	int cascade_count;       /* in use: once a cascade holds the whole scene, it covers the rest of the view */
 	float splits[AA_SHADOW_CASCADES + 1]; /* view depths: cascade i covers [splits[i], splits[i+1]] */
 	struct aa_shadow_cascade cascades[AA_SHADOW_CASCADES];
 };

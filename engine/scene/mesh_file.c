@@ -669,8 +669,21 @@ static bool material_color(const struct aiMaterial *mat, const char *key, unsign
 		return false;
 	float v[4] = {c.r, c.g, c.b, c.a};
 	for (int k = 0; k < 4; k++)
-		out[k] = isfinite(v[k]) ? fminf(fmaxf(v[k], 0.0f), 1.0f) : 1.0f;
+		out[k] = isfinite(v[k]) ? v[k] : -1.0f; /* out of range: clamped and warned about by clamp_values */
 	return true;
+}
+
+/* Values outside what the format allows are clamped, and the scene says so once per field. */
+static void clamp_values(struct loader *L, const char *what, const char *field, float *v, int n, float lo, float hi)
+{
+	bool clamped = false;
+	for (int k = 0; k < n; k++) {
+		float c = isfinite(v[k]) ? fminf(fmaxf(v[k], lo), hi) : lo;
+		clamped |= c != v[k];
+		v[k] = c;
+	}
+	if (clamped)
+		aa_scene_warn(L->scene, "%s: %s: %s outside [%g, %g] (or not a number): clamped", L->shown, what, field, lo, hi);
 }
 
 /* The texture of a map, if the material has one: loads it into maps[map]. */
@@ -714,6 +727,7 @@ static int convert_material(struct loader *L, unsigned index, struct aa_material
 	float color[4] = {1, 1, 1, 1};
 	if (!material_color(mat, AI_MATKEY_BASE_COLOR, color))
 		material_color(mat, AI_MATKEY_COLOR_DIFFUSE, color);
+	clamp_values(L, what, L->gltf ? "baseColorFactor" : "diffuse colour (Kd)", color, 4, 0.0f, 1.0f);
 	memcpy(m->base_color, color, sizeof color);
 	int shading = 0;
 	unsigned one = 1;
@@ -726,10 +740,11 @@ static int convert_material(struct loader *L, unsigned index, struct aa_material
 		m->metallic = 1.0f, m->roughness = 1.0f; /* glTF's defaults */
 		material_float(mat, AI_MATKEY_METALLIC_FACTOR, &m->metallic);
 		material_float(mat, AI_MATKEY_ROUGHNESS_FACTOR, &m->roughness);
-		m->metallic = fminf(fmaxf(m->metallic, 0.0f), 1.0f);
-		m->roughness = fminf(fmaxf(m->roughness, 0.0f), 1.0f);
+		clamp_values(L, what, "metallicFactor", &m->metallic, 1, 0.0f, 1.0f);
+		clamp_values(L, what, "roughnessFactor", &m->roughness, 1, 0.0f, 1.0f);
 		float emissive[4] = {0, 0, 0, 1};
 		material_color(mat, AI_MATKEY_COLOR_EMISSIVE, emissive);
+		clamp_values(L, what, "emissiveFactor", emissive, 3, 0.0f, 1.0f);
 		for (int k = 0; k < 3; k++)
 			m->emissive[k] = emissive[k] * (g ? g->emissive_strength : 1.0f);
 		struct aiString mode = {0};
@@ -738,8 +753,9 @@ static int convert_material(struct loader *L, unsigned index, struct aa_material
 			m->alpha_cutout = true;
 			m->alpha_cutoff = 0.5f;
 			material_float(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &m->alpha_cutoff);
-			/* the cut-out path keeps alpha >= cutoff; 0 would keep all, 1 nearly nothing */
-			m->alpha_cutoff = fminf(fmaxf(m->alpha_cutoff, 1e-4f), 1.0f);
+			clamp_values(L, what, "alphaCutoff", &m->alpha_cutoff, 1, 0.0f, 1.0f);
+			/* the cut-out path discards alpha < cutoff: at 0 nothing would go, so keep a hair above */
+			m->alpha_cutoff = fmaxf(m->alpha_cutoff, 1e-4f);
 		} else if (strcmp(mode.data, "BLEND") == 0) {
 			m->blend = true;
 		} else {
@@ -772,6 +788,9 @@ static int convert_material(struct loader *L, unsigned index, struct aa_material
 		material_float(mat, AI_MATKEY_SHININESS, &shininess);
 		material_float(mat, AI_MATKEY_OPACITY, &opacity);
 		material_color(mat, AI_MATKEY_COLOR_EMISSIVE, emissive);
+		clamp_values(L, what, "specular colour (Ks)", ks, 3, 0.0f, 1.0f);
+		clamp_values(L, what, "emissive colour (Ke)", emissive, 3, 0.0f, 1.0f);
+		clamp_values(L, what, "opacity (d)", &opacity, 1, 0.0f, 1.0f);
 		memcpy(m->emissive, emissive, sizeof m->emissive);
 		m->specular = fmaxf(ks[0], fmaxf(ks[1], ks[2]));
 		/* the exponent maps onto roughness the way scene materials do (512 at 0, 4 at 1) */
