@@ -545,12 +545,14 @@ def test_broken_files():
 
 def test_warning_file(path):
     """Loads, with things aalab drops or approximates: an extension it does not know (used, not required),
-    a texture read through TEXCOORD_1 and a CUBICSPLINE animation (interpolated linearly)."""
+    a texture read through TEXCOORD_1, a CUBICSPLINE animation (interpolated linearly) and a metallicFactor
+    over 1 (clamped)."""
     g = skin_document(cubic=True)
     tex = g.texture(g.image(8, 8, 3, quadrants))
     mat = g.doc["materials"][0]
     mat["pbrMetallicRoughness"]["baseColorTexture"] = {"index": tex, "texCoord": 1}
     mat["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}
+    mat["pbrMetallicRoughness"]["metallicFactor"] = 1.5  # out of range: clamped to 1
     prim = g.doc["meshes"][0]["primitives"][0]
     prim["attributes"]["TEXCOORD_0"] = g.vec2([(0.25, 0.25)] * 12)
     prim["attributes"]["TEXCOORD_1"] = g.vec2([(0.75, 0.75)] * 12)
