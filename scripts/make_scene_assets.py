@@ -381,6 +381,19 @@ def test_alpha_modes(path):
     g.write(path)
 
 
+def test_blend_order(path):
+    """Two BLEND quads that overlap: a green one in front (z = 0.2), listed first, and a red one behind. Drawn
+    in file order the green one would be under the red one; sorted back to front it is over it."""
+    g = Gltf()
+    green = g.material(name="near", alphaMode="BLEND",
+                       pbrMetallicRoughness={"baseColorFactor": [0.0, 1.0, 0.0, 0.5], "metallicFactor": 0.0})
+    red = g.material(name="far", alphaMode="BLEND",
+                     pbrMetallicRoughness={"baseColorFactor": [1.0, 0.0, 0.0, 0.5], "metallicFactor": 0.0})
+    g.mesh_node([quad(g, material=green)], "near", (-0.25, 0, 0.2))
+    g.mesh_node([quad(g, material=red)], "far", (0.25, 0, 0))
+    g.write(path)
+
+
 def test_double_sided(path):
     """Two quads facing away from the camera (-z): doubleSided true (seen from behind) and false (culled)."""
     g = Gltf()
@@ -577,6 +590,7 @@ def write_test_assets():
     test_emissive("emissive.gltf")
     test_normal_map("normal-map.gltf")
     test_alpha_modes("alpha-modes.gltf")
+    test_blend_order("blend-order.gltf")
     test_double_sided("double-sided.gltf")
     test_texture_transform("texture-transform.gltf")
     test_metallic_roughness("metallic-roughness.gltf")

@@ -31,3 +31,4 @@ TESTS += tests/integration/test_assets
 # results.json, job files' relative scene paths, aalab scenes without loading meshes
 TESTS += tests/cli_assets.sh
 EXTRA_DIST += tests/cli_assets.sh
+EXTRA_DIST += bench/materials

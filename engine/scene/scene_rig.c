@@ -110,8 +110,8 @@ void aa_rig_pose(const struct aa_rig *rig, const struct aa_pose *pose, double t,
 	if (pose && pose->clip >= 0 && pose->clip < rig->clip_count) {
 		const struct aa_rig_clip *clip = &rig->clips[pose->clip];
 		double tau = pose->clip_time + pose->clip_speed * (isfinite(t) ? t : 0.0);
-		/* clips loop; reduced in double so long runs stay smooth */
-		if (clip->duration > 0) {
+		/* clips loop (the end itself shows the last pose); reduced in double so long runs stay smooth */
+		if (clip->duration > 0 && (tau > clip->duration || tau < 0)) {
 			tau = fmod(tau, clip->duration);
 			if (tau < 0)
 				tau += clip->duration;

@@ -247,6 +247,24 @@ static void test_alpha_modes(void **state)
 	aa_scene_free(sc);
 }
 
+/* Blended parts are drawn farthest first: where the green quad (in front, first in the file) overlaps
+ * the red one (behind), green goes over red over the backdrop. */
+static void test_blend_order(void **state)
+{
+	(void)state;
+	struct aa_scene *sc = feature_scene("blend-order.gltf", 0.5f, NULL, NULL);
+	struct capture c;
+	render_reference(sc, 0, 8, &c);
+	float red[3] = {lit(0.5f, 1), lit(0.5f, 0), lit(0.5f, 0)}, green[3] = {lit(0.5f, 0), lit(0.5f, 1), lit(0.5f, 0)};
+	float back[3] = {BACKDROP}, want[3];
+	for (int k = 0; k < 3; k++)
+		want[k] = 0.5f * green[k] + 0.5f * (0.5f * red[k] + 0.5f * back[k]);
+	expect_color(&c, "green over red", 0, 0, want[0], want[1], want[2], 0.01f);
+	check_golden("blend-order", &c);
+	capture_free(&c);
+	aa_scene_free(sc);
+}
+
 /* Both quads face away: the double-sided one is seen from behind, the single-sided one is culled. */
 static void test_double_sided(void **state)
 {
@@ -413,7 +431,7 @@ static void test_every_method(void **state)
 {
 	(void)state;
 	static const char *const files[] = {"base-color.gltf", "vertex-colors.gltf", "emissive.gltf",
-					    "normal-map.gltf", "alpha-modes.gltf", "double-sided.gltf",
+					    "normal-map.gltf", "alpha-modes.gltf", "blend-order.gltf", "double-sided.gltf",
 					    "texture-transform.gltf", "metallic-roughness.gltf", "material.obj"};
 	const char *methods[AA_MAX_METHODS];
 	for (int i = 0; i < aa_method_count; i++)
@@ -513,6 +531,7 @@ int main(void)
 		cmocka_unit_test(test_emissive),
 		cmocka_unit_test(test_normal_map),
 		cmocka_unit_test(test_alpha_modes),
+		cmocka_unit_test(test_blend_order),
 		cmocka_unit_test(test_double_sided),
 		cmocka_unit_test(test_texture_transform),
 		cmocka_unit_test(test_metallic_roughness),

@@ -81,14 +81,16 @@ static void test_refusals(void **state)
 		 AA_ERR_INVALID},
 		{"broken-index-range.gltf", "meshes[0].primitives[0].indices: index 60000", AA_ERR_INVALID},
 		{"broken-nan-position.gltf", "not a finite number", AA_ERR_INVALID},
-		{"broken-huge-position.gltf", "positions must be within 1e+07", AA_ERR_INVALID},
+		{"broken-huge-position.gltf", "vertex 2 is at (1e+30, -0.5, 0): positions must be within 1e+07",
+		 AA_ERR_INVALID},
 		{"broken-nan-position.obj", "not a finite number", AA_ERR_INVALID},
-		{"broken-huge-position.obj", "positions must be within 1e+07", AA_ERR_INVALID},
-		{"broken-huge-position.ply", "positions must be within 1e+07", AA_ERR_INVALID},
+		{"broken-huge-position.obj", "vertex 2 is at (1e+30, 1, 0): positions must be within 1e+07", AA_ERR_INVALID},
+		{"broken-huge-position.ply", "vertex 2 is at (0, 3e+09, 0): positions must be within 1e+07", AA_ERR_INVALID},
 		{"broken-index-range.obj", "a face names a vertex that does not exist", AA_ERR_INVALID},
 		{"broken-truncated.glb", "truncated: its header says 1060 bytes, the file has 530", AA_ERR_INVALID},
 		{"broken-not-json.gltf", "is not glTF", AA_ERR_INVALID},
-		{"broken-gltf1.gltf", "is glTF 1.0 (asset.version)", AA_ERR_INVALID},
+		{"broken-gltf1.gltf", "is glTF 1.0 (asset.version), which aalab does not read: convert it to glTF 2.0",
+		 AA_ERR_INVALID},
 		{"broken-missing-texture.gltf", "texture 'missing-texture.png' not found", AA_ERR_NOT_FOUND},
 		{"broken-missing-mtl.obj", "material library (mtllib) 'no-such-file.mtl' not found", AA_ERR_NOT_FOUND},
 		{"broken-missing-map.obj", "texture 'no-such-image.png' not found", AA_ERR_NOT_FOUND},
@@ -162,6 +164,24 @@ static void test_scene_material_overrides(void **state)
 	assert_int_equal(sc->texture_count, 0);
 	for (int o = 0; o < 3; o++)
 		assert_string_equal(sc->materials[sc->objects[o].material_index].name, "paint");
+	aa_scene_free(sc);
+	/* a named mesh: its file materials load only when some object keeps them */
+	struct aa_error err = {0};
+	const char *overridden = "{\"materials\": {\"paint\": {}}, \"meshes\": {\"m\": {\"type\": \"file\", \"path\": "
+				 "\"base-color.gltf\"}}, \"objects\": [{\"mesh\": \"m\", \"material\": \"paint\"}, "
+				 "{\"mesh\": \"m\", \"material\": \"paint\"}], " CAM "}";
+	assert_int_equal(aa_scene_load_string(overridden, "named.json", assets, &sc, &err), 0);
+	assert_int_equal(sc->object_count, 6);
+	assert_int_equal(sc->material_count, 1);
+	assert_int_equal(sc->texture_count, 0);
+	aa_scene_free(sc);
+	const char *kept = "{\"materials\": {\"paint\": {}}, \"meshes\": {\"m\": {\"type\": \"file\", \"path\": "
+			   "\"base-color.gltf\"}}, \"objects\": [{\"mesh\": \"m\", \"material\": \"paint\"}, "
+			   "{\"mesh\": \"m\"}], " CAM "}";
+	assert_int_equal(aa_scene_load_string(kept, "named.json", assets, &sc, &err), 0);
+	assert_int_equal(sc->material_count, 4);
+	assert_string_equal(sc->materials[sc->objects[0].material_index].name, "paint");
+	assert_true(sc->materials[sc->objects[3].material_index].model == AA_SHADING_METAL_ROUGH);
 	aa_scene_free(sc);
 }
 
@@ -303,6 +323,28 @@ static void test_skin_and_animation(void **state)
 	aa_scene_free(sc);
 }
 
+/* Rotations interpolate the shorter way: keys q and -q' (the same turns as q and q') meet halfway at 45
+ * degrees, not at -135. A rig built by hand: one node, one rotation channel of two keys. */
+static void test_rotation_takes_the_short_way(void **state)
+{
+	(void)state;
+	float times[2] = {0, 1}, s = sqrtf(0.5f);
+	float values[8] = {0, 0, 0, 1, 0, 0, -s, -s};
+	struct aa_rig_channel channel = {.node = 0, .path = AA_CHANNEL_ROTATION, .key_count = 2, .times = times,
+					 .values = values};
+	struct aa_rig_clip clip = {.name = "turn", .duration = 1, .channel_count = 1, .channels = &channel};
+	struct aa_rig_node node = {.parent = -1, .rotation = {0, 0, 0, 1}, .scale = {1, 1, 1}};
+	int joint_node = 0;
+	mat4 ibm = mat4_identity(), joint;
+	struct aa_rig rig = {.node_count = 1, .nodes = &node, .joint_count = 1, .joint_node = &joint_node,
+			     .inverse_bind = &ibm, .clip_count = 1, .clips = &clip};
+	struct aa_pose pose = {.clip = 0, .clip_time = 0.5, .clip_speed = 0};
+	aa_rig_pose(&rig, &pose, 0, &joint);
+	vec3 x = mat4_transform_dir(joint, v3(1, 0, 0));
+	if (!near(x.x, s, 1e-5f) || !near(x.y, s, 1e-5f))
+		fail_msg("+x went to (%g, %g, %g); 45 degrees about +z expected", x.x, x.y, x.z);
+}
+
 static void test_animation_errors(void **state)
 {
 	(void)state;
@@ -374,6 +416,7 @@ int main(void)
 		cmocka_unit_test(test_normal_map_tangents),
 		cmocka_unit_test(test_texture_transform),
 		cmocka_unit_test(test_skin_and_animation),
+		cmocka_unit_test(test_rotation_takes_the_short_way),
 		cmocka_unit_test(test_animation_errors),
 		cmocka_unit_test(test_warnings),
 		cmocka_unit_test(test_obj_material),
