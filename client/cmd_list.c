@@ -45,9 +45,11 @@ static int describe_scene(const char *name, bool json)
 		json_dumpf(o, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 	} else {
-		printf("%s (%s)\n  %s\n  %llu triangles, %d objects, %d materials, %d textures\n  paths: default, static",
-		       s->name, file, s->description, (unsigned long long)aa_scene_triangle_count(s), s->model_count,
-		       s->material_count, s->texture_count);
+		printf("%s (%s)\n", s->name, file);
+		if (s->description[0]) /* a scene without one gets no blank line */
+			printf("  %s\n", s->description);
+		printf("  %llu triangles, %d objects, %d materials, %d textures\n  paths: default, static",
+		       (unsigned long long)aa_scene_triangle_count(s), s->model_count, s->material_count, s->texture_count);
 		for (int p = 0; p < s->path_count; p++)
 			printf(", %s", s->paths[p].name);
 		putchar('\n');
@@ -93,9 +95,12 @@ int cmd_scenes(int argc, char **argv)
 			json_object_set_new(o, "description", json_string(sum.description));
 			json_object_set_new(o, "objects", json_integer(sum.object_count));
 			json_object_set_new(o, "paths", paths);
-			if (!json)
-				printf("%-16s %4d objects  paths: default, static%s%s\n%16s %s\n", names[i], sum.object_count,
-				       sum.path_count ? ", " : "", sum.path_count ? sum.paths[0] : "", "", sum.description);
+			if (!json) {
+				printf("%-16s %4d objects  paths: default, static%s%s\n", names[i], sum.object_count,
+				       sum.path_count ? ", " : "", sum.path_count ? sum.paths[0] : "");
+				if (sum.description[0])
+					printf("%16s %s\n", "", sum.description);
+			}
 		} else {
 			json_object_set_new(o, "error", json_string(err.message));
 			if (!json)

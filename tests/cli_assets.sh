@@ -83,4 +83,8 @@ expect_stderr "mesh file 'broken-truncated.glb': truncated" "scenes NAME names t
 s=$(scene skin.gltf)
 expect_status 0 "scenes FILE shows a file's animations" -- "$AALAB" scenes "$s"
 grep -q "animation 'bend' of skin.gltf: 1.000 s" "$TMP/out" && pass "scenes FILE lists the clip" || fail "no clip: $(cat "$TMP/out")"
+! grep -q '^ *$' "$TMP/out" && pass "a scene without a description gets no blank line" || fail "blank line: $(cat "$TMP/out")"
+printf '{"objects": [{"mesh": "cube"}], "camera": {"position": [0, 0, 5], "target": [0, 0, 0]}}\n' >"$TMP/list/plain.json"
+expect_status 0 "scenes lists one without a description" -- env AALAB_SCENE_DIR="$TMP/list" "$AALAB" scenes
+! grep -q '^ *$' "$TMP/out" && pass "and prints no blank line for it" || fail "blank line: $(cat "$TMP/out")"
 finish
