@@ -714,8 +714,11 @@ void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 	if (!r->plan.shadow_map)
 		return;
 	VkClearValue clear = {.depthStencil = {0.0f, 0}};
-	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
-			  &clear, 1);
+	/* only the tiles of the cascades in use are cleared and drawn: the shader never reads past the last
+	 * (its split is infinite) */
+	int count = r->shadow_fit.cascade_count;
+	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, count > 1 ? AA_SHADOW_MAP_SIZE : AA_SHADOW_TILE_SIZE,
+			  count > 2 ? AA_SHADOW_MAP_SIZE : AA_SHADOW_TILE_SIZE, &clear, 1);
 	bool *visible = malloc((size_t)(r->scene->object_count ? r->scene->object_count : 1) * sizeof *visible);
 	for (int i = 0; i < r->shadow_fit.cascade_count && visible; i++) {
 		VkViewport viewport = {(float)((i & 1) * AA_SHADOW_TILE_SIZE), (float)((i >> 1) * AA_SHADOW_TILE_SIZE),

@@ -15,7 +15,8 @@
 #define AA_MAX_LIGHTS 8
 #define AA_SCENE_COLOR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
 #define AA_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
-#define AA_SHADOW_MAP_SIZE 4096 /* the atlas: AA_SHADOW_CASCADES maps of AA_SHADOW_TILE_SIZE^2 in a 2x2 grid */
+#define AA_SHADOW_MAP_SIZE 2048 /* the atlas: AA_SHADOW_CASCADES maps of AA_SHADOW_TILE_SIZE^2 in a 2x2 grid (as many
+				 * texels as one 2048^2 map: the shadow pass costs what one map over the scene did) */
 #define AA_SHADOW_TILE_SIZE (AA_SHADOW_MAP_SIZE / 2)
 /* 16 bits are ample over each cascade's tight depth range, and half the memory of 32 */
 #define AA_SHADOW_FORMAT VK_FORMAT_D16_UNORM

@@ -12,6 +12,7 @@
 
 #include "frame_plan.h"
 #include "job.h"
+#include "renderer.h"
 #include "shadow_fit.h"
 
 static struct aa_camera camera_at(vec3 position, vec3 target)
@@ -33,7 +34,7 @@ static void fit(struct aa_camera cam, struct aa_shadow_fit *out, const struct aa
 {
 	struct aa_shadow_fit_input in = {.camera = cam, .aspect = 16.0f / 9.0f,
 					 .light_direction = v3_normalize(v3(-0.3f, -1.0f, 0.2f)), .boxes = boxes,
-					 .box_count = n, .tile_size = 2048};
+					 .box_count = n, .tile_size = AA_SHADOW_TILE_SIZE};
 	aa_shadow_fit(&in, out);
 }
 
@@ -107,7 +108,8 @@ static void test_cascades_cover_the_view(void **state)
 	}
 	/* the view's depth range starts where something is in view (the floor ahead), not at the near plane */
 	assert_true(f.splits[0] > 1.0f);
-	/* the field is 400 deep: one map over it had texels of 400 / 2048; the nearest cascade's are 10x finer */
+	/* the field is 400 deep: one 2048^2 map over it had texels of 400 / 2048; the nearest cascade's (of the
+	 * renderer's tile size) are 10x finer */
 	assert_true(f.cascades[0].texel < 0.1f * 400.0f / 2048.0f);
 	/* a box behind the camera changes nothing */
 	struct aa_box more[5];
