@@ -8,7 +8,7 @@ static const struct aa_cmd_entry commands[] = {
 	/* name, usage, summary, exec[, full help] */
 	{"run", "run [JOB.json|SUITE] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
 		"[--reference-samples N] [--repeat N] [--label KEY=VALUE] [--out DIR] [--device SEL] [--no-images] [--json] "
-		"[--quiet]",
+		"[--quiet] [--shard I/N]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
 	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
 	{"suites", "suites [--json]", "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
@@ -28,6 +28,10 @@ static const struct aa_cmd_entry commands[] = {
 	 "compare two image files (PSNR, SSIM, FLIP, Fourier bands) and gate on thresholds", cmd_diff, aa_diff_help},
 	{"compare", "compare BASE NEW [--fail-if GATE ...] [--json] [--junit FILE] [--markdown FILE] [--allow-missing]",
 	 "compare two runs per case and method, and gate on quality and cost", cmd_compare, aa_compare_help},
+	{"merge", "merge --out DIR SHARD_DIR... [--force] [--json] [--quiet]",
+	 "join the result folders of a job's shards into the results of the whole job", cmd_merge, aa_merge_help},
+	{"slurm", "slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G] [--time T] [--submit]",
+	 "write (and submit) a Slurm array job of a job's shards and the job that merges them", cmd_slurm, aa_slurm_help},
 };
 
 static void usage(FILE *out)

@@ -42,6 +42,11 @@ void aa_print_suite_table(json_t *results, FILE *out);
 /* Prints the table of a results.json document: a suite's summary, or the methods of a job. */
 void aa_print_results_any(json_t *results, FILE *out);
 extern const char aa_diff_help[];
+/* Shards on a farm (docs/farm.md): aalab merge joins shard folders, aalab slurm writes and submits the
+ * Slurm scripts. */
+int cmd_merge(int argc, char **argv);
+int cmd_slurm(int argc, char **argv);
+extern const char aa_merge_help[], aa_slurm_help[];
 
 /* job_args.c: the job flags of run and submit. The long options, for getopt_long with a longindex;
  * aa_job_flag(cmd, option name, value, job) returns 0 (set), -1 (bad value, printed) or 1 (not a job flag). */

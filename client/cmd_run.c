@@ -14,6 +14,8 @@
 #include "farm.h"
 #include "out_dir.h"
 #include "results/results.h"
+#include "results/shard_results.h"
+#include "shard.h"
 
 const char aa_run_help[] =
 	"usage: aalab run [JOB.json|SUITE] [options]\n"
@@ -40,6 +42,9 @@ const char aa_run_help[] =
 	"                          folder beside it and renamed when complete. A non-empty DIR that is not\n"
 	"                          an aalab result is refused; an earlier aalab result only with --force\n"
 	"  --force                 replace the earlier aalab result in --out DIR\n"
+	"  --shard I/N             render shard I (0 to N-1) of N: a contiguous run of the frames, after the\n"
+	"                          warm-up frames its temporal methods need (job field shard.warmup); in\n"
+	"                          this process. 'aalab merge' joins the shards (docs/farm.md)\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
 	"  --json                  print results.json to standard output instead of the table\n"
@@ -101,16 +106,16 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 
 int cmd_run(int argc, char **argv)
 {
-	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE };
+	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
 		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP},
-		{"force", no_argument, 0, OPT_FORCE}, {0, 0, 0, 0},
+		{"force", no_argument, 0, OPT_FORCE}, {"shard", required_argument, 0, OPT_SHARD}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
-	const char *out_dir = NULL, *device = NULL, *connect = NULL;
+	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
 	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false;
 	struct aa_out_dir od = {0};
 	int status = AA_EXIT_USAGE, c, idx;
@@ -129,6 +134,7 @@ int cmd_run(int argc, char **argv)
 		case OPT_LOCAL: local = true; break;
 		case OPT_CONNECT: connect = optarg; break;
 		case OPT_FORCE: force = true; break;
+		case OPT_SHARD: shard_text = optarg; break;
 		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(aa_run_help, stderr); goto out;
 		}
@@ -144,11 +150,25 @@ int cmd_run(int argc, char **argv)
 		json_decref(job);
 		goto out;
 	}
+	/* A shard is the job's frames [begin, end) after its warm-up; its results.json names the whole job */
+	struct aa_job_spec whole = spec;
+	int shard_index = 0, shard_count = 0;
+	if (shard_text && (aa_shard_parse(shard_text, &shard_index, &shard_count, &err) ||
+			   aa_shard_job(&whole, shard_index, shard_count, &spec, &err))) {
+		fprintf(stderr, "aalab run: --%s: %s\n", err.path, err.message);
+		json_decref(job);
+		goto out;
+	}
+	if (shard_text && connect) {
+		fprintf(stderr, "aalab run: --shard runs in this process; leave out --connect\n");
+		json_decref(job);
+		goto out;
+	}
 	/* A running aalabd does the work when one answers (or --connect names one). --local and --device run
 	 * here, and so does a scene given as a file path: the daemon takes scene names only. */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device;
+	bool remote = !local && !device && !shard_text;
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;
 		aa_job_case(&spec, i, &one);
@@ -226,7 +246,8 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	status = AA_EXIT_OK;
-	if (aa_suite_results_write(result, od.work, &err)) {
+	if (shard_text ? aa_shard_results_write(result->cases[0], &whole, shard_index, shard_count, od.work, &err)
+		       : aa_suite_results_write(result, od.work, &err)) {
 		fprintf(stderr, "aalab run: %s\n", err.message);
 		status = AA_EXIT_FAILED;
 	} else if (aa_out_dir_commit(&od, cerr, sizeof cerr)) {

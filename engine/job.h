@@ -70,6 +70,13 @@ struct aa_job_spec {
 	int label_count;
 	struct aa_label labels[AA_MAX_LABELS];
 	char baseline[160];        /* aalabd: the job to compare with, "000042" or "latest:KEY=VALUE,..." */
+	/* shards (docs/farm.md): job field shard.warmup, -1 for each method's default (aa_shard_warmup) */
+	int shard_warmup;
+	/* not in job JSON, set for a shard's run: frames rendered before first_frame by the methods with
+	 * history only (no reference, not scored), and the whole job's ordinal of first_frame, by which the
+	 * method order rotates as in the unsharded run */
+	int warmup_frames;
+	int order_ordinal;
 };
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
@@ -97,6 +104,7 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size);
 #define AA_MAX_FRAMES 100000
 #define AA_MAX_REFERENCE_SAMPLES 4096
 #define AA_MAX_REPEAT 100
+#define AA_MAX_SHARD_WARMUP 1000
 
 /* ---- results ---- */
 

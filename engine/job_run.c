@@ -209,22 +209,6 @@ static int setup(struct job_state *js, struct aa_error *err)
 	return 0;
 }
 
-/* Temporal stability: the mean over pixels and R,G,B of |(m[t] - m[t-1]) - (r[t] - r[t-1])|, the change
- * between frames that the reference does not have (8-bit units). */
-static double flicker(const struct aa_image_rgba8 *m, const struct aa_image_rgba8 *m_prev,
-		      const struct aa_image_rgba8 *r, const struct aa_image_rgba8 *r_prev)
-{
-	size_t n = (size_t)m->width * m->height;
-	uint64_t sum = 0;
-	for (size_t i = 0; i < n * 4; i++) {
-		if ((i & 3) == 3)
-			continue;
-		int d = ((int)m->pixels[i] - m_prev->pixels[i]) - ((int)r->pixels[i] - r_prev->pixels[i]);
-		sum += (uint64_t)abs(d);
-	}
-	return (double)sum / (double)(n * 3);
-}
-
 static int render_reference(struct job_state *js, int ordinal, bool reuse, struct aa_error *err)
 {
 	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
@@ -391,10 +375,26 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	fr->flicker = NAN;
 	if (js->prev_out8[i].pixels) {
 		if (ctx->ordinal > 0)
-			fr->flicker = flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
+			fr->flicker = aa_metrics_flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
 		memcpy(js->prev_out8[i].pixels, js->out8.pixels, (size_t)ctx->width * ctx->height * 4);
 	}
 	js->result->methods[i].frame_count = ctx->ordinal + 1;
+	return 0;
+}
+
+/* A shard's warm-up frame (docs/farm.md, "Warm-up"): each method with history renders it so that its
+ * history at the shard's first scored frame is close to the unsharded run's; methods without history,
+ * the reference and the metrics skip it, and nothing of it is kept. */
+static int shard_warmup_frame(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_error *err)
+{
+	for (int i = 0; i < js->spec->method_count; i++) {
+		if (!has_history(&js->spec->methods[i]))
+			continue;
+		struct aa_frame_ctx c = *ctx;
+		struct aa_timed_render unused = {0};
+		if (timed_render(js, i, js->states[i], &c, &unused, err))
+			return -1;
+	}
 	return 0;
 }
 
@@ -426,7 +426,9 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	bool hold_first = strcmp(spec->path, "static") == 0;
 	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
 	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
-	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
+	/* a shard's warm-up frames come first, at negative ordinals: history only (shard_warmup_frame) */
+	const int start = -spec->warmup_frames;
+	for (int ordinal = start; rc == 0 && ordinal < spec->frames; ordinal++) {
 		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
 		double t = ctx.frame / fps, t_before = (ctx.frame - 1) / fps;
 		struct aa_camera cam, prev_cam;
@@ -435,13 +437,18 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 		bool path_cut = false, unused = false;
 		aa_camera_path_eval(path, hold_first, ctx.frame > 0 ? t_before : -1.0, t, &cam, &path_cut);
 		aa_camera_path_eval(path, hold_first, -1.0, t_before, &prev_cam, &unused);
-		ctx.cut = path_cut || ordinal == 0; /* history starts empty at the first frame */
+		ctx.cut = path_cut || ordinal == start; /* history starts empty at the first frame */
 		bool has_prev = ctx.frame > 0 && !path_cut;
 		js.renderer->inject_nonfinite = ctx.frame == spec->inject_nonfinite_frame;
 		aa_renderer_set_frame(js.renderer, &cam, t, has_prev ? &prev_cam : NULL, t_before, &ctx);
 
-		if (ordinal == 0)
+		if (ordinal == start)
 			rc = warm_up(&js, &ctx, err);
+		if (ordinal < 0) {
+			if (rc == 0)
+				rc = shard_warmup_frame(&js, &ctx, err);
+			continue;
+		}
 		if (rc == 0)
 			rc = render_reference(&js, ordinal, ordinal > 0 && still, err);
 		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
@@ -456,7 +463,7 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 		 * re-time (timing.repeat). */
 		const int count = spec->method_count, repeat = spec->timing_repeat;
 		for (int round = 0; rc == 0 && round < repeat; round++) {
-			const int first = (int)(((long)ordinal * repeat + round) % count);
+			const int first = (int)(((long)(spec->order_ordinal + ordinal) * repeat + round) % count);
 			for (int position = 0; rc == 0 && position < count; position++) {
 				const int i = (first + position) % count;
 				if (round > 0) {

@@ -14,8 +14,9 @@
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
 					"reference", "methods", "keep_frames", "linear_frames", "name", "timing",
-					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", NULL };
+					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
+static const char *const shard_keys[] = { "warmup", NULL };
 static const char *const reference_keys[] = { "samples", NULL };
 static const char *const method_keys[] = { "name", "params", NULL };
 
@@ -304,6 +305,20 @@ static int parse_timing(const json_t *v, struct aa_job_spec *s, struct aa_error 
 	return 0;
 }
 
+/* shard.warmup: frames a shard renders before its first scored one (docs/farm.md, "Warm-up") */
+static int parse_shard(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+{
+	if (!json_is_object(v))
+		return bad(err, AA_ERR_INVALID, "shard", "expected an object like {\"warmup\": 16}, got %s",
+			   type_name(v));
+	if (check_keys(v, "shard", shard_keys, err) < 0)
+		return -1;
+	const json_t *warmup = json_object_get(v, "warmup");
+	if (warmup && get_int(warmup, "shard.warmup", 0, AA_MAX_SHARD_WARMUP, &s->shard_warmup, err) < 0)
+		return -1;
+	return 0;
+}
+
 void aa_job_spec_defaults(struct aa_job_spec *spec)
 {
 	memset(spec, 0, sizeof *spec);
@@ -317,6 +332,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->timing_repeat = 1;
 	spec->keep_frames = true;
 	spec->inject_nonfinite_frame = -1;
+	spec->shard_warmup = -1;
 	/* the default comparison: no AA against 16x supersampling */
 	const char *defaults[] = {"none", "ssaa"};
 	for (int i = 0; i < 2; i++) {
@@ -380,6 +396,8 @@ int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa
 		return -1;
 	if ((v = json_object_get(job, "timing")) && parse_timing(v, &s, err) < 0)
 		return -1;
+	if ((v = json_object_get(job, "shard")) && parse_shard(v, &s, err) < 0)
+		return -1;
 	/* every timed render keeps its pass times: bound them as frames alone are bounded */
 	if ((long)s.frames * s.timing_repeat > AA_MAX_FRAMES)
 		return bad(err, AA_ERR_LIMIT, "timing.repeat", "%d frames x %d repeats is over %d timed renders per "
@@ -405,6 +423,8 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 				"methods", methods, "keep_frames", spec->keep_frames, "linear_frames",
 				spec->linear_frames, "name", spec->name, "timing", "repeat", spec->timing_repeat);
 	aa_job_suite_to_json(spec, job);
+	if (job && spec->shard_warmup >= 0) /* only when given: the canonical form of other jobs is as before */
+		json_object_set_new(job, "shard", json_pack("{s:i}", "warmup", spec->shard_warmup));
 	return job;
 }
 

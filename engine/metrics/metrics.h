@@ -51,4 +51,10 @@ double aa_psnr_from_mse(double mse, double peak);
 double aa_ssim_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test);
 double aa_ssim_channel(const double *ref, const double *test, int width, int height, double data_range);
 
+/* engine/metrics/flicker.c: the mean over pixels and R,G,B of |(m[t] - m[t-1]) - (r[t] - r[t-1])|, the
+ * change between frames that the reference does not have (8-bit units); all four images of one size.
+ * aa_job_run scores each frame with it, and aalab merge the frames across shard borders. */
+double aa_metrics_flicker(const struct aa_image_rgba8 *m, const struct aa_image_rgba8 *m_prev,
+			  const struct aa_image_rgba8 *r, const struct aa_image_rgba8 *r_prev);
+
 #endif

@@ -1,0 +1,642 @@
+/* Shards' results: written with the whole job they belong to, read back, and merged into the results of
+ * the whole job (docs/farm.md, "Merging"). */
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "../shard.h"
+#include "results.h"
+#include "shard_results.h"
+
+int aa_shard_results_write(const struct aa_job_result *r, const struct aa_job_spec *whole, int index, int count,
+			   const char *dir, struct aa_error *err)
+{
+	json_t *root = aa_results_to_json(r), *shard = aa_shard_json(whole, index, count);
+	json_t *curves = json_array();
+	/* what results.json does not store per frame: each frame's error-threshold curve, so that the merged
+	 * curve is the mean over every frame of the job, as the unsharded run computes it */
+	for (int i = 0; curves && i < r->method_count; i++) {
+		json_t *frames = json_array();
+		for (int k = 0; frames && k < r->methods[i].frame_count; k++) {
+			json_t *curve = json_array();
+			for (int t = 0; curve && t < AA_THRESHOLD_COUNT; t++) {
+				const double v = r->methods[i].frames[k].metrics.exceed[t];
+				json_array_append_new(curve, isfinite(v) ? json_real(v) : json_null());
+			}
+			json_array_append_new(frames, curve);
+		}
+		json_array_append_new(curves, frames);
+	}
+	if (!root || !shard || !curves || json_object_set_new(shard, "error_threshold_curves", curves) < 0 ||
+	    json_object_set_new(root, "shard", shard) < 0) {
+		json_decref(root);
+		if (!root)
+			json_decref(shard);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
+	}
+	/* 17 significant digits, unlike the 15 of an unsharded run's results.json: every double reads back
+	 * exactly, so that the merged summaries are those of the unsharded run to the last bit */
+	char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
+	json_decref(root);
+	size_t len = text ? strlen(text) : 0;
+	char *with_newline = text ? realloc(text, len + 2) : NULL;
+	if (!with_newline) {
+		free(text);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing results.json");
+	}
+	with_newline[len] = '\n';
+	with_newline[len + 1] = '\0';
+	int rc = aa_results_write_file_atomic(dir, "results.json", with_newline, len + 1, err);
+	free(with_newline);
+	return rc || aa_report_write_html(r, dir, err) ? -1 : 0;
+}
+
+/* ---- reading results.json back ---- */
+
+/* A number, or NAN for null and absent keys (the writer's num() wrote non-finite values as null). */
+static double jnum(const json_t *obj, const char *key)
+{
+	const json_t *v = json_object_get(obj, key);
+	return json_is_number(v) ? json_number_value(v) : NAN;
+}
+
+static double jnum_at(const json_t *arr, int i)
+{
+	const json_t *v = json_array_get(arr, (size_t)i);
+	return json_is_number(v) ? json_number_value(v) : NAN;
+}
+
+static void jstr(const json_t *obj, const char *key, char *out, size_t size)
+{
+	const char *s = json_string_value(json_object_get(obj, key));
+	snprintf(out, size, "%s", s ? s : "");
+}
+
+static int need_array(const json_t *obj, const char *key, const char *path, const json_t **out, struct aa_error *err)
+{
+	*out = json_object_get(obj, key);
+	if (!json_is_array(*out))
+		return aa_error_set(err, AA_ERR_INVALID, path, "expected an array");
+	return 0;
+}
+
+static void read_metrics(const json_t *f, const double *curve, struct aa_metrics *m)
+{
+	m->identical = json_is_true(json_object_get(f, "identical"));
+	m->psnr = jnum(f, "psnr");
+	m->mse = jnum(f, "mse");
+	m->rmsd = jnum(f, "rmsd");
+	m->snr = jnum(f, "snr");
+	m->ssim = jnum(f, "ssim");
+	m->max_abs = jnum(f, "max_abs");
+	m->flip_mean = jnum(f, "flip");
+	const json_t *fourier = json_object_get(f, "fourier");
+	for (int k = 0; k < AA_FOURIER_BANDS; k++)
+		m->fourier[k] = jnum(fourier, aa_fourier_band_names[k]);
+	for (int t = 0; t < AA_THRESHOLD_COUNT; t++)
+		m->exceed[t] = curve[t];
+}
+
+static int read_frames(const json_t *jm, const char *path, int first_frame, int frames, int repeat,
+		       struct aa_method_result *m, struct aa_error *err)
+{
+	char where[128];
+	const json_t *arr, *timed, *item;
+	size_t i;
+	snprintf(where, sizeof where, "%s.frames", path);
+	if (need_array(jm, "frames", where, &arr, err))
+		return -1;
+	if ((int)json_array_size(arr) != frames)
+		return aa_error_set(err, AA_ERR_INVALID, where, "%zu frames; the job has %d", json_array_size(arr), frames);
+	/* the job's error-threshold curve: results.json stores the mean over frames only */
+	double curve[AA_THRESHOLD_COUNT];
+	const json_t *share = json_object_get(json_object_get(json_object_get(jm, "metrics"), "error_threshold_curve"),
+					      "share");
+	for (int t = 0; t < AA_THRESHOLD_COUNT; t++)
+		curve[t] = jnum_at(share, t);
+	m->frames = calloc((size_t)frames, sizeof *m->frames);
+	m->timed = calloc((size_t)frames * (size_t)repeat, sizeof *m->timed);
+	if (!m->frames || !m->timed)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	json_array_foreach(arr, i, item) {
+		struct aa_frame_result *f = &m->frames[i];
+		f->frame = (int)json_integer_value(json_object_get(item, "frame"));
+		if (f->frame != first_frame + (int)i) {
+			snprintf(where, sizeof where, "%s.frames[%zu].frame", path, i);
+			return aa_error_set(err, AA_ERR_INVALID, where, "%d, expected %d", f->frame, first_frame + (int)i);
+		}
+		f->gpu_ms = jnum(item, "gpu_ms");
+		f->cpu_ms = jnum(item, "cpu_ms");
+		const json_t *passes = json_object_get(item, "passes"), *p;
+		size_t k;
+		json_array_foreach(passes, k, p) {
+			if (k >= AA_MAX_PASSES)
+				break;
+			jstr(p, "name", f->passes[k].name, sizeof f->passes[k].name);
+			f->passes[k].gpu_ms = jnum(p, "gpu_ms");
+			f->pass_count = (int)k + 1;
+		}
+		read_metrics(item, curve, &f->metrics);
+		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
+		f->flicker = jnum(item, "flicker");
+	}
+	m->frame_count = frames;
+	snprintf(where, sizeof where, "%s.timed_renders", path);
+	if (need_array(jm, "timed_renders", where, &timed, err))
+		return -1;
+	if ((int)json_array_size(timed) != frames * repeat)
+		return aa_error_set(err, AA_ERR_INVALID, where, "%zu timed renders; the job has %d", json_array_size(timed),
+				    frames * repeat);
+	json_array_foreach(timed, i, item) {
+		const int ordinal = (int)json_integer_value(json_object_get(item, "frame")) - first_frame;
+		const int r = (int)json_integer_value(json_object_get(item, "repeat"));
+		if (ordinal < 0 || ordinal >= frames || r < 0 || r >= repeat) {
+			snprintf(where, sizeof where, "%s.timed_renders[%zu]", path, i);
+			return aa_error_set(err, AA_ERR_INVALID, where, "frame or repeat outside the job");
+		}
+		struct aa_timed_render *t = &m->timed[ordinal * repeat + r];
+		const struct aa_frame_result *f = &m->frames[ordinal];
+		*t = (struct aa_timed_render){.ordinal = ordinal, .repeat = r,
+					      .position = (int)json_integer_value(json_object_get(item, "position")),
+					      .gpu_ms = jnum(item, "gpu_ms"), .cpu_ms = jnum(item, "cpu_ms")};
+		/* pass times are stored by the scored render's pass names, or not at all */
+		const json_t *passes = json_object_get(item, "passes");
+		if (json_object_size(passes) > 0) {
+			t->pass_count = f->pass_count;
+			for (int k = 0; k < f->pass_count; k++)
+				t->pass_ms[k] = jnum(passes, f->passes[k].name);
+		}
+	}
+	m->timed_count = frames * repeat;
+	return 0;
+}
+
+int aa_results_from_json(const json_t *doc, struct aa_job_result *out, struct aa_error *err)
+{
+	memset(out, 0, sizeof *out);
+	if (json_object_get(doc, "cases"))
+		return aa_error_set(err, AA_ERR_INVALID, "cases", "the results of a suite; expected those of one job");
+	if (aa_job_spec_from_json(json_object_get(doc, "job"), &out->spec, err) < 0) {
+		aa_error_prefix(err, "job");
+		return -1;
+	}
+	const struct aa_job_spec *spec = &out->spec;
+	const json_t *scene = json_object_get(doc, "scene"), *device = json_object_get(doc, "device"), *v, *item;
+	size_t i;
+	jstr(doc, "started_at", out->started_at, sizeof out->started_at);
+	out->wall_seconds = jnum(doc, "wall_seconds");
+	jstr(scene, "name", out->scene_name, sizeof out->scene_name);
+	jstr(scene, "file", out->scene_file, sizeof out->scene_file);
+	out->scene_triangles = (uint64_t)json_integer_value(json_object_get(scene, "triangles"));
+	jstr(device, "name", out->device_name, sizeof out->device_name);
+	jstr(device, "driver", out->driver_info, sizeof out->driver_info);
+	out->timestamp_period_ns = jnum(device, "timestamp_period_ns");
+	if (need_array(doc, "passes", "passes", &v, err))
+		return -1;
+	json_array_foreach(v, i, item) {
+		if (i >= AA_MAX_PASSES)
+			break;
+		jstr(item, "pass", out->plan[i].pass, sizeof out->plan[i].pass);
+		jstr(item, "reason", out->plan[i].reason, sizeof out->plan[i].reason);
+		out->plan[i].ran = json_is_true(json_object_get(item, "ran"));
+		out->plan_count = (int)i + 1;
+	}
+
+	const json_t *ref = json_object_get(doc, "reference");
+	out->reference.samples = (int)json_integer_value(json_object_get(ref, "samples"));
+	jstr(ref, "pattern", out->reference.pattern, sizeof out->reference.pattern);
+	out->reference.memory_bytes = (uint64_t)json_integer_value(json_object_get(ref, "memory_bytes"));
+	if (need_array(ref, "per_frame", "reference.per_frame", &v, err))
+		return -1;
+	if ((int)json_array_size(v) != spec->frames)
+		return aa_error_set(err, AA_ERR_INVALID, "reference.per_frame", "%zu frames; the job has %d",
+				    json_array_size(v), spec->frames);
+	out->reference.frames = calloc((size_t)spec->frames, sizeof *out->reference.frames);
+	if (!out->reference.frames)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	json_array_foreach(v, i, item) {
+		struct aa_reference_frame *f = &out->reference.frames[i];
+		f->frame = (int)json_integer_value(json_object_get(item, "frame"));
+		f->gpu_ms = jnum(item, "gpu_ms");
+		f->cpu_ms = jnum(item, "cpu_ms");
+		f->convergence_identical = json_is_true(json_object_get(item, "convergence_identical"));
+		f->convergence_psnr = jnum(item, "convergence_psnr");
+		f->convergence_mse = jnum(item, "convergence_mse");
+		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
+		f->reused = json_is_true(json_object_get(item, "reused"));
+	}
+	out->reference.frame_count = spec->frames;
+
+	if (need_array(doc, "methods", "methods", &v, err))
+		return -1;
+	if ((int)json_array_size(v) != spec->method_count)
+		return aa_error_set(err, AA_ERR_INVALID, "methods", "%zu methods; the job has %d", json_array_size(v),
+				    spec->method_count);
+	out->method_count = spec->method_count;
+	json_array_foreach(v, i, item) {
+		struct aa_method_result *m = &out->methods[i];
+		const struct aa_method_spec *ms = &spec->methods[i];
+		char path[64];
+		snprintf(path, sizeof path, "methods[%zu]", i);
+		jstr(item, "label", m->label, sizeof m->label);
+		if (strcmp(m->label, ms->label) != 0)
+			return aa_error_set(err, AA_ERR_INVALID, path, "label \"%s\"; the job has \"%s\"", m->label, ms->label);
+		m->method = ms->method;
+		m->params = ms->params;
+		jstr(item, "path_taken", m->path_taken, sizeof m->path_taken);
+		m->memory_bytes = (uint64_t)json_integer_value(json_object_get(item, "memory_bytes"));
+		const json_t *mem = json_object_get(item, "memory"), *mi;
+		size_t k;
+		json_array_foreach(mem, k, mi) {
+			if (k >= AA_MAX_MEMORY_ITEMS)
+				break;
+			jstr(mi, "name", m->memory[k].name, sizeof m->memory[k].name);
+			m->memory[k].bytes = (uint64_t)json_integer_value(json_object_get(mi, "bytes"));
+			m->memory_count = (int)k + 1;
+		}
+		if (read_frames(item, path, spec->first_frame, spec->frames, spec->timing_repeat, m, err))
+			return -1;
+		/* a shard's per-frame curves (aa_shard_results_write) replace the mean curve */
+		const json_t *curves = json_array_get(json_object_get(json_object_get(doc, "shard"),
+								       "error_threshold_curves"), i);
+		for (int k = 0; json_is_array(curves) && k < m->frame_count; k++) {
+			const json_t *curve = json_array_get(curves, (size_t)k);
+			for (int t = 0; json_array_size(curve) == AA_THRESHOLD_COUNT && t < AA_THRESHOLD_COUNT; t++)
+				m->frames[k].metrics.exceed[t] = jnum_at(curve, t);
+		}
+	}
+	return 0;
+}
+
+/* ---- merging ---- */
+
+struct shard_doc {
+	const char *dir;
+	json_t *doc;
+	const json_t *shard;
+	int index, count, warmup;
+	const char *hash;
+};
+
+static json_t *load_results(const char *dir, bool *absent, struct aa_error *err)
+{
+	char path[4200];
+	snprintf(path, sizeof path, "%s/results.json", dir);
+	*absent = false;
+	if (access(path, F_OK) != 0 && errno == ENOENT) {
+		*absent = true;
+		return NULL;
+	}
+	json_error_t je;
+	json_t *doc = json_load_file(path, 0, &je);
+	if (!doc)
+		aa_error_set(err, AA_ERR_INVALID, "", "%s: line %d: %s", path, je.line, je.text);
+	return doc;
+}
+
+static int read_image(const char *dir, const char *kind, const char *label, int ordinal, struct aa_image_rgba8 *img)
+{
+	char rel[512], path[4800];
+	aa_results_frame_relpath(kind, label, ordinal, rel, sizeof rel);
+	snprintf(path, sizeof path, "%s/%s", dir, rel);
+	struct aa_error ignored;
+	return access(path, R_OK) == 0 ? aa_image_read_rgba8(path, img, &ignored) : -1;
+}
+
+/* Flicker of the first frame of shard s (its shard could not see the frame before): from the images of
+ * the last frame of shard s-1 and the first of shard s, the 8-bit images each scored. */
+static void border_flicker(const struct aa_shard_merge *m, int s, int begin, FILE *notes)
+{
+	const struct aa_job_result *r = m->result;
+	struct aa_image_rgba8 ref_prev = {0}, ref = {0}, out_prev = {0}, out = {0};
+	int prev_begin, prev_end;
+	aa_shard_range(r->spec.frames, s - 1, m->shard_count, &prev_begin, &prev_end);
+	bool ok = read_image(m->dirs[s - 1], "frames", "reference", prev_end - prev_begin - 1, &ref_prev) == 0 &&
+		  read_image(m->dirs[s], "frames", "reference", 0, &ref) == 0;
+	for (int i = 0; i < r->method_count; i++) {
+		struct aa_frame_result *f = &r->methods[i].frames[begin];
+		bool have = ok && read_image(m->dirs[s - 1], "frames", r->methods[i].label, prev_end - prev_begin - 1,
+					     &out_prev) == 0 &&
+			    read_image(m->dirs[s], "frames", r->methods[i].label, 0, &out) == 0 &&
+			    out.width == ref.width && out.height == ref.height && out_prev.width == ref.width &&
+			    out_prev.height == ref.height && ref_prev.width == ref.width && ref_prev.height == ref.height;
+		if (have)
+			f->flicker = aa_metrics_flicker(&out, &out_prev, &ref, &ref_prev);
+		else if (notes)
+			fprintf(notes, "%s: flicker of frame %d not computed: the images of frames %d and %d are not in "
+				"the shards (keep_frames)\n", r->methods[i].label, f->frame, f->frame - 1, f->frame);
+		aa_image_rgba8_free(&out_prev);
+		aa_image_rgba8_free(&out);
+	}
+	aa_image_rgba8_free(&ref_prev);
+	aa_image_rgba8_free(&ref);
+}
+
+/* Copies shard s's result into the whole job's at ordinal begin. */
+static void place_shard(struct aa_job_result *w, const struct aa_job_result *s, int begin)
+{
+	const int repeat = w->spec.timing_repeat;
+	for (int k = 0; k < s->reference.frame_count; k++)
+		w->reference.frames[begin + k] = s->reference.frames[k];
+	for (int i = 0; i < w->method_count; i++) {
+		const struct aa_method_result *sm = &s->methods[i];
+		struct aa_method_result *wm = &w->methods[i];
+		for (int k = 0; k < sm->frame_count; k++)
+			wm->frames[begin + k] = sm->frames[k];
+		for (int k = 0; k < sm->timed_count; k++) {
+			struct aa_timed_render *t = &wm->timed[begin * repeat + k];
+			*t = sm->timed[k];
+			t->ordinal += begin;
+		}
+	}
+}
+
+static int check_shards(struct shard_doc *docs, int n, int count, const struct aa_job_spec *whole,
+			struct aa_error *err)
+{
+	char missing[600] = "";
+	int absent = 0;
+	for (int s = 0; s < count; s++) {
+		int have = 0;
+		for (int k = 0; k < n; k++)
+			have += docs[k].doc && docs[k].index == s;
+		if (have == 0) {
+			int b, e;
+			aa_shard_range(whole->frames, s, count, &b, &e);
+			size_t len = strlen(missing);
+			if (len < sizeof missing)
+				snprintf(missing + len, sizeof missing - len, "%s%d-%d (shard %d of %d)", absent ? ", " : "",
+					 whole->first_frame + b, whole->first_frame + e - 1, s, count);
+			absent++;
+		}
+	}
+	if (absent)
+		return aa_error_set(err, AA_ERR_INVALID, "", "missing frames %s; run %s again and merge", missing,
+				    absent > 1 ? "those shards" : "that shard");
+	return 0;
+}
+
+int aa_shard_merge(const char *const *dirs, int dir_count, struct aa_shard_merge *out, FILE *notes,
+		   struct aa_error *err)
+{
+	memset(out, 0, sizeof *out);
+	struct shard_doc *docs = calloc((size_t)(dir_count > 0 ? dir_count : 1), sizeof *docs);
+	struct aa_job_result *part = calloc(1, sizeof *part);
+	struct aa_job_spec whole;
+	const struct shard_doc *first = NULL;
+	int rc = -1;
+	if (!docs || !part) {
+		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		goto done;
+	}
+	for (int k = 0; k < dir_count; k++) {
+		struct shard_doc *d = &docs[k];
+		bool absent;
+		d->dir = dirs[k];
+		d->doc = load_results(d->dir, &absent, err);
+		if (absent) {
+			if (notes)
+				fprintf(notes, "%s: no results.json (the shard did not finish)\n", d->dir);
+			continue;
+		}
+		if (!d->doc)
+			goto done;
+		d->shard = json_object_get(d->doc, "shard");
+		d->hash = json_string_value(json_object_get(d->shard, "job_hash"));
+		d->index = (int)json_integer_value(json_object_get(d->shard, "index"));
+		d->count = (int)json_integer_value(json_object_get(d->shard, "count"));
+		d->warmup = (int)json_integer_value(json_object_get(d->shard, "warmup"));
+		if (!json_is_object(d->shard) || !d->hash || d->count < 1 || d->index < 0 || d->index >= d->count) {
+			aa_error_set(err, AA_ERR_INVALID, "", "%s: not the results of a shard (no valid \"shard\" in "
+				     "results.json; shards come from 'aalab run --shard I/N')", d->dir);
+			goto done;
+		}
+		if (!first) {
+			first = d;
+			continue;
+		}
+		if (strcmp(d->hash, first->hash) != 0 || d->count != first->count || d->warmup != first->warmup) {
+			aa_error_set(err, AA_ERR_INVALID, "", "%s is shard %d of %d of job %s (warm-up %d), %s shard %d of %d "
+				     "of job %s (warm-up %d): not shards of one job", d->dir, d->index, d->count, d->hash,
+				     d->warmup, first->dir, first->index, first->count, first->hash, first->warmup);
+			goto done;
+		}
+		for (const struct shard_doc *e = docs; e < d; e++)
+			if (e->doc && e->index == d->index) {
+				aa_error_set(err, AA_ERR_INVALID, "", "%s and %s are both shard %d of %d; give each shard once",
+					     e->dir, d->dir, d->index, d->count);
+				goto done;
+			}
+	}
+	if (!first) {
+		aa_error_set(err, AA_ERR_INVALID, "", "no shard results in the %d folder%s given", dir_count,
+			     dir_count == 1 ? "" : "s");
+		goto done;
+	}
+	if (aa_job_spec_from_json(json_object_get(first->shard, "job"), &whole, err) < 0) {
+		aa_error_prefix(err, "%s: shard.job", first->dir);
+		goto done;
+	}
+	if (check_shards(docs, dir_count, first->count, &whole, err))
+		goto done;
+
+	struct aa_job_result *w = out->result = calloc(1, sizeof *w);
+	out->shard_count = first->count;
+	out->dirs = calloc((size_t)first->count, sizeof *out->dirs);
+	if (!w || !out->dirs) {
+		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		goto done;
+	}
+	w->spec = whole;
+	w->method_count = whole.method_count;
+	w->reference.frames = calloc((size_t)whole.frames, sizeof *w->reference.frames);
+	w->reference.frame_count = whole.frames;
+	for (int i = 0; i < whole.method_count; i++) {
+		struct aa_method_result *m = &w->methods[i];
+		snprintf(m->label, sizeof m->label, "%s", whole.methods[i].label);
+		m->method = whole.methods[i].method;
+		m->params = whole.methods[i].params;
+		m->frames = calloc((size_t)whole.frames, sizeof *m->frames);
+		m->timed = calloc((size_t)whole.frames * (size_t)whole.timing_repeat, sizeof *m->timed);
+		m->frame_count = whole.frames;
+		m->timed_count = whole.frames * whole.timing_repeat;
+		if (!m->frames || !m->timed)
+			break;
+	}
+	if (!w->reference.frames || (whole.method_count > 0 && !w->methods[whole.method_count - 1].timed)) {
+		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		goto done;
+	}
+	w->wall_seconds = 0;
+	for (int s = 0; s < first->count; s++) {
+		const struct shard_doc *d = docs;
+		while (!d->doc || d->index != s)
+			d++;
+		int begin, end;
+		aa_shard_range(whole.frames, s, first->count, &begin, &end);
+		aa_job_result_free(part);
+		if (aa_results_from_json(d->doc, part, err) < 0) {
+			aa_error_prefix(err, "%s/results.json", d->dir);
+			goto done;
+		}
+		if (part->spec.first_frame != whole.first_frame + begin || part->spec.frames != end - begin) {
+			aa_error_set(err, AA_ERR_INVALID, "", "%s: frames %d-%d, but shard %d of %d of this job is frames "
+				     "%d-%d", d->dir, part->spec.first_frame, part->spec.first_frame + part->spec.frames - 1, s,
+				     first->count, whole.first_frame + begin, whole.first_frame + end - 1);
+			goto done;
+		}
+		if (s == 0) { /* what does not depend on the frames: the first shard's */
+			memcpy(w->scene_name, part->scene_name, sizeof w->scene_name);
+			memcpy(w->scene_file, part->scene_file, sizeof w->scene_file);
+			w->scene_triangles = part->scene_triangles;
+			memcpy(w->device_name, part->device_name, sizeof w->device_name);
+			memcpy(w->driver_info, part->driver_info, sizeof w->driver_info);
+			w->timestamp_period_ns = part->timestamp_period_ns;
+			w->plan_count = part->plan_count;
+			memcpy(w->plan, part->plan, sizeof w->plan);
+			w->reference.samples = part->reference.samples;
+			memcpy(w->reference.pattern, part->reference.pattern, sizeof w->reference.pattern);
+			w->reference.memory_bytes = part->reference.memory_bytes;
+			memcpy(w->started_at, part->started_at, sizeof w->started_at);
+			for (int i = 0; i < w->method_count; i++) {
+				struct aa_method_result *m = &w->methods[i];
+				memcpy(m->path_taken, part->methods[i].path_taken, sizeof m->path_taken);
+				m->memory_count = part->methods[i].memory_count;
+				memcpy(m->memory, part->methods[i].memory, sizeof m->memory);
+				m->memory_bytes = part->methods[i].memory_bytes;
+			}
+		} else if (notes && strcmp(part->device_name, w->device_name) != 0) {
+			fprintf(notes, "%s ran on %s, shard 0 on %s: their times are not comparable\n", d->dir,
+				part->device_name, w->device_name);
+		}
+		if (strcmp(part->started_at, w->started_at) < 0) /* ISO 8601 UTC sorts as text */
+			memcpy(w->started_at, part->started_at, sizeof w->started_at);
+		if (isfinite(part->wall_seconds))
+			w->wall_seconds += part->wall_seconds; /* the machine time of the whole job */
+		place_shard(w, part, begin);
+		out->dirs[s] = strdup(d->dir);
+		if (!out->dirs[s]) {
+			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+			goto done;
+		}
+	}
+	for (int s = 1; s < first->count; s++) {
+		int begin, end;
+		aa_shard_range(whole.frames, s, first->count, &begin, &end);
+		border_flicker(out, s, begin, notes);
+	}
+	rc = 0;
+done:
+	if (part) {
+		aa_job_result_free(part);
+		free(part);
+	}
+	for (int k = 0; docs && k < dir_count; k++)
+		json_decref(docs[k].doc);
+	free(docs);
+	if (rc)
+		aa_shard_merge_free(out);
+	return rc;
+}
+
+void aa_shard_merge_free(struct aa_shard_merge *m)
+{
+	if (m->result) {
+		aa_job_result_free(m->result);
+		free(m->result);
+	}
+	for (int s = 0; m->dirs && s < m->shard_count; s++)
+		free(m->dirs[s]);
+	free(m->dirs);
+	memset(m, 0, sizeof *m);
+}
+
+/* ---- images ---- */
+
+static int copy_file(const char *from, const char *to, struct aa_error *err)
+{
+	if (link(from, to) == 0)
+		return 0; /* the same file system: no copy needed */
+	int in = open(from, O_RDONLY), outfd = in < 0 ? -1 : open(to, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	char buf[65536];
+	ssize_t n = 0;
+	while (outfd >= 0 && (n = read(in, buf, sizeof buf)) > 0)
+		if (write(outfd, buf, (size_t)n) != n) {
+			n = -1;
+			break;
+		}
+	int failed = in < 0 || outfd < 0 || n < 0;
+	int saved = errno;
+	if (in >= 0)
+		close(in);
+	if (outfd >= 0 && close(outfd) < 0)
+		failed = 1;
+	if (failed)
+		return aa_error_set(err, AA_ERR_IO, "", "cannot copy %s to %s: %s", from, to, strerror(saved));
+	return 0;
+}
+
+static int make_dirs(char *path)
+{
+	for (char *p = path + 1; *p; p++)
+		if (*p == '/') {
+			*p = '\0';
+			int bad = mkdir(path, 0755) < 0 && errno != EEXIST;
+			*p = '/';
+			if (bad)
+				return -1;
+		}
+	return 0;
+}
+
+/* One image of shard s's frame ordinal k, into dir under the whole job's ordinal. */
+static int merge_image(const char *shard_dir, const char *dir, const char *kind, const char *label, int k,
+		       int ordinal, bool linear, struct aa_error *err)
+{
+	char rel[512], from[4800], to[4800];
+	if (linear)
+		aa_results_linear_relpath(label, k, rel, sizeof rel);
+	else
+		aa_results_frame_relpath(kind, label, k, rel, sizeof rel);
+	snprintf(from, sizeof from, "%s/%s", shard_dir, rel);
+	if (linear)
+		aa_results_linear_relpath(label, ordinal, rel, sizeof rel);
+	else
+		aa_results_frame_relpath(kind, label, ordinal, rel, sizeof rel);
+	snprintf(to, sizeof to, "%s/%s", dir, rel);
+	if (access(from, F_OK) != 0)
+		return aa_error_set(err, AA_ERR_INVALID, "", "%s is missing: an incomplete shard", from);
+	if (make_dirs(to) < 0)
+		return aa_error_set(err, AA_ERR_IO, "", "cannot create the folders of %s: %s", to, strerror(errno));
+	return copy_file(from, to, err);
+}
+
+int aa_shard_merge_images(const struct aa_shard_merge *m, const char *dir, struct aa_error *err)
+{
+	const struct aa_job_spec *spec = &m->result->spec;
+	if (!spec->keep_frames)
+		return 0;
+	for (int s = 0; s < m->shard_count; s++) {
+		int begin, end;
+		aa_shard_range(spec->frames, s, m->shard_count, &begin, &end);
+		for (int k = 0; k < end - begin; k++) {
+			if (merge_image(m->dirs[s], dir, "frames", "reference", k, begin + k, false, err) ||
+			    (spec->linear_frames && merge_image(m->dirs[s], dir, NULL, "reference", k, begin + k, true, err)))
+				return -1;
+			for (int i = 0; i < spec->method_count; i++) {
+				const char *label = spec->methods[i].label;
+				if (merge_image(m->dirs[s], dir, "frames", label, k, begin + k, false, err) ||
+				    merge_image(m->dirs[s], dir, "diff", label, k, begin + k, false, err) ||
+				    merge_image(m->dirs[s], dir, "flip", label, k, begin + k, false, err) ||
+				    (spec->linear_frames && merge_image(m->dirs[s], dir, NULL, label, k, begin + k, true, err)))
+					return -1;
+			}
+		}
+	}
+	return 0;
+}
