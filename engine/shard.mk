@@ -3,3 +3,13 @@
 libaaengine_a_SOURCES += engine/shard.h engine/shard.c engine/metrics/flicker.c \
 	engine/results/shard_results.h engine/results/shard_results.c
 aalab_SOURCES += client/cmd_merge.c client/cmd_slurm.c
+
+check_PROGRAMS += tests/unit/test_shard
+tests_unit_test_shard_SOURCES = tests/unit/test_shard.c
+tests_unit_test_shard_CFLAGS = $(TEST_CFLAGS)
+tests_unit_test_shard_LDADD = $(TEST_LIBS)
+TESTS += tests/unit/test_shard
+
+SHARD_SCRIPT_TESTS = tests/shard_merge.sh
+TESTS += $(SHARD_SCRIPT_TESTS)
+EXTRA_DIST += $(SHARD_SCRIPT_TESTS) tests/integration/shard_check.py tests/integration/slurm_cluster.py

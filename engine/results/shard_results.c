@@ -624,6 +624,11 @@ int aa_shard_merge_images(const struct aa_shard_merge *m, const char *dir, struc
 	for (int s = 0; s < m->shard_count; s++) {
 		int begin, end;
 		aa_shard_range(spec->frames, s, m->shard_count, &begin, &end);
+		/* a shard run with --no-images has no frames/ at all, like an unsharded run with it */
+		char frames_dir[4200];
+		snprintf(frames_dir, sizeof frames_dir, "%s/frames", m->dirs[s]);
+		if (access(frames_dir, F_OK) != 0)
+			continue;
 		for (int k = 0; k < end - begin; k++) {
 			if (merge_image(m->dirs[s], dir, "frames", "reference", k, begin + k, false, err) ||
 			    (spec->linear_frames && merge_image(m->dirs[s], dir, NULL, "reference", k, begin + k, true, err)))
