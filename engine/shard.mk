@@ -13,3 +13,7 @@ TESTS += tests/unit/test_shard
 SHARD_SCRIPT_TESTS = tests/shard_merge.sh
 TESTS += $(SHARD_SCRIPT_TESTS)
 EXTRA_DIST += $(SHARD_SCRIPT_TESTS) tests/integration/shard_check.py tests/integration/slurm_cluster.py
+
+# a throwaway one-node Slurm cluster (root; skips where Slurm cannot run, fails under AALAB_REQUIRE_SLURM)
+TESTS += tests/integration/slurm_farm.py
+EXTRA_DIST += tests/integration/slurm_farm.py

@@ -288,7 +288,7 @@ static json_t *load_results(const char *dir, bool *absent, struct aa_error *err)
 	char path[4200];
 	snprintf(path, sizeof path, "%s/results.json", dir);
 	*absent = false;
-	if (access(path, F_OK) != 0 && errno == ENOENT) {
+	if (access(path, F_OK) != 0 && (errno == ENOENT || errno == ENOTDIR)) {
 		*absent = true;
 		return NULL;
 	}
