@@ -11,9 +11,9 @@
 #define AA_MAX_SHARDS 10000
 /* Default warm-up frames per method with history (aa_method_shard_warmup; docs/farm.md, "Warm-up") */
 #define AA_TAA_SHARD_WARMUP 32
-#define AA_T2MSAA_SHARD_WARMUP 2
-#define AA_ASAA_SHARD_WARMUP 4
-#define AA_HISTORY_SHARD_WARMUP 32
+#define AA_T2MSAA_SHARD_WARMUP 48
+#define AA_ASAA_SHARD_WARMUP 48
+#define AA_HISTORY_SHARD_WARMUP 64
 
 /* "I/N": shard I (0-based) of N; errors have path "shard" and say what is valid. */
 int aa_shard_parse(const char *text, int *index, int *count, struct aa_error *err);
