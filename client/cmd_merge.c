@@ -9,6 +9,7 @@
 #include "client.h"
 #include "out_dir.h"
 #include "results/results.h"
+#include "farm.h"
 #include "results/shard_results.h"
 
 const char aa_merge_help[] =
@@ -71,8 +72,7 @@ int cmd_merge(int argc, char **argv)
 		aa_shard_merge_free(&m);
 		return AA_EXIT_USAGE;
 	}
-	if (aa_shard_merge_images(&m, od.work, &err) || aa_results_write_json(m.result, od.work, &err) ||
-	    aa_report_write_html(m.result, od.work, &err)) {
+	if (aa_shard_merge_images(&m, od.work, &err) || aa_suite_results_write(m.result, od.work, &err)) {
 		fprintf(stderr, "aalab merge: %s\n", err.message);
 		status = err.code == AA_ERR_INVALID ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 	} else if (aa_out_dir_commit(&od, cerr, sizeof cerr)) {
@@ -82,13 +82,19 @@ int cmd_merge(int argc, char **argv)
 	}
 	if (status != AA_EXIT_OK) {
 		aa_out_dir_discard(&od);
-	} else if (print_json) {
-		json_t *j = aa_results_to_json(m.result);
-		json_dumpf(j, stdout, JSON_INDENT(2));
-		fputc('\n', stdout);
+	} else if (print_json || m.result->spec.is_suite) {
+		json_t *j = aa_suite_results_to_json(m.result);
+		if (print_json) {
+			json_dumpf(j, stdout, JSON_INDENT(2));
+			fputc('\n', stdout);
+		} else {
+			aa_print_suite_table(j, stdout);
+		}
 		json_decref(j);
-	} else {
-		aa_print_table(m.result, stdout);
+	}
+	if (status == AA_EXIT_OK && !print_json) {
+		if (!m.result->spec.is_suite)
+			aa_print_table(m.result->cases[0], stdout);
 		printf("\nmerged %d shards\nresults: %s/results.json\nreport:  %s/report.html\n", m.shard_count,
 		       od.final, od.final);
 	}

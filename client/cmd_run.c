@@ -246,7 +246,7 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	status = AA_EXIT_OK;
-	if (shard_text ? aa_shard_results_write(result->cases[0], &whole, shard_index, shard_count, od.work, &err)
+	if (shard_text ? aa_shard_results_write(result, &whole, shard_index, shard_count, od.work, &err)
 		       : aa_suite_results_write(result, od.work, &err)) {
 		fprintf(stderr, "aalab run: %s\n", err.message);
 		status = AA_EXIT_FAILED;

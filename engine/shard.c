@@ -64,12 +64,65 @@ int aa_job_shard_warmup(const struct aa_job_spec *spec)
 	return w;
 }
 
+static double case_cost(const struct aa_case_spec *c)
+{
+	return (double)c->frames * c->width * c->height;
+}
+
+void aa_shard_cases(const struct aa_job_spec *suite, int index, int count, int *begin, int *end)
+{
+	const int n = suite->case_count;
+	double total = 0;
+	for (int i = 0; i < n; i++)
+		total += case_cost(&suite->cases[i]);
+	/* cut k (1..count-1) after the case whose running cost is nearest k/count of the total, leaving every
+	 * shard at least one case */
+	int cut_prev = 0;
+	for (int k = 1; k <= index + 1; k++) {
+		int cut = n;
+		if (k < count) {
+			const double target = total * k / count;
+			double run = 0;
+			int best = cut_prev + 1;
+			double best_gap = -1;
+			for (int j = 1; j <= n; j++) {
+				run += case_cost(&suite->cases[j - 1]);
+				if (j < cut_prev + 1 || j > n - (count - k))
+					continue;
+				double gap = run > target ? run - target : target - run;
+				if (best_gap < 0 || gap < best_gap) {
+					best_gap = gap;
+					best = j;
+				}
+			}
+			cut = best;
+		}
+		if (k == index + 1) {
+			*begin = cut_prev;
+			*end = cut;
+			return;
+		}
+		cut_prev = cut;
+	}
+}
+
 int aa_shard_job(const struct aa_job_spec *whole, int index, int count, struct aa_job_spec *out,
 		 struct aa_error *err)
 {
-	if (whole->is_suite)
-		return aa_error_set(err, AA_ERR_INVALID, "shard", "a suite is not split into shards yet; run its "
-				    "cases as jobs of their own, or the suite unsharded");
+	if (whole->is_suite) {
+		if (count > whole->case_count)
+			return aa_error_set(err, AA_ERR_INVALID, "shard", "%d shards of a suite of %d cases would leave "
+					    "shards without cases (a suite is split by whole cases); valid: 1 to %d shards",
+					    count, whole->case_count, whole->case_count);
+		int begin, end;
+		aa_shard_cases(whole, index, count, &begin, &end);
+		*out = *whole;
+		out->case_count = end - begin;
+		memmove(out->cases, whole->cases + begin, (size_t)(end - begin) * sizeof *out->cases);
+		out->warmup_frames = 0;
+		out->order_ordinal = 0;
+		return 0;
+	}
 	if (count > whole->frames)
 		return aa_error_set(err, AA_ERR_INVALID, "shard", "%d shards of %d frames would leave shards "
 				    "without frames; valid: 1 to %d shards", count, whole->frames, whole->frames);
@@ -87,10 +140,17 @@ int aa_shard_job(const struct aa_job_spec *whole, int index, int count, struct a
 json_t *aa_shard_json(const struct aa_job_spec *whole, int index, int count)
 {
 	int begin, end;
-	aa_shard_range(whole->frames, index, count, &begin, &end);
 	char hash[80];
 	aa_job_hash(whole, hash, sizeof hash);
-	return json_pack("{s:i, s:i, s:s, s:o, s:{s:i, s:i}, s:i}", "index", index, "count", count, "job_hash", hash,
-			 "job", aa_job_spec_to_json(whole), "frames", "first", whole->first_frame + begin, "count",
-			 end - begin, "warmup", aa_job_shard_warmup(whole));
+	json_t *j = json_pack("{s:i, s:i, s:s, s:o, s:i}", "index", index, "count", count, "job_hash", hash, "job",
+			      aa_job_spec_to_json(whole), "warmup", whole->is_suite ? 0 : aa_job_shard_warmup(whole));
+	if (whole->is_suite) {
+		aa_shard_cases(whole, index, count, &begin, &end);
+		json_object_set_new(j, "cases", json_pack("{s:i, s:i}", "first", begin, "count", end - begin));
+	} else {
+		aa_shard_range(whole->frames, index, count, &begin, &end);
+		json_object_set_new(j, "frames", json_pack("{s:i, s:i}", "first", whole->first_frame + begin, "count",
+							   end - begin));
+	}
+	return j;
 }

@@ -25,9 +25,12 @@ void aa_shard_range(int frames, int index, int count, int *begin, int *end);
 int aa_method_shard_warmup(const struct aa_method_spec *ms);
 /* The job's warm-up: shard.warmup when given, else the largest default of its methods. */
 int aa_job_shard_warmup(const struct aa_job_spec *spec);
+/* Shard index of count of a suite: its whole cases [*begin, *end), contiguous, in order, at least one
+ * each, cut where the running cost (frames x pixels) is nearest to index/count of the whole. */
+void aa_shard_cases(const struct aa_job_spec *suite, int index, int count, int *begin, int *end);
 /* The job shard index of count runs: the frames of aa_shard_range with its warm-up before them (never
- * before the job's first frame: shard 0 starts as the unsharded run does). Suites are refused (their
- * cases are not split yet). */
+ * before the job's first frame: shard 0 starts as the unsharded run does); for a suite, the whole cases
+ * of aa_shard_cases (no warm-up: every case starts where it starts in the suite). */
 int aa_shard_job(const struct aa_job_spec *whole, int index, int count, struct aa_job_spec *out,
 		 struct aa_error *err);
 /* results.json's "shard": which shard of which job this folder is. */

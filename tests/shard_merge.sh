@@ -4,7 +4,8 @@
 # warm-up reaches the job's first frame, within the stated tolerance where it does not); merge names the
 # missing frames and exits 2, and succeeds once that shard ran; duplicated shards, shards of another job
 # or warm-up, and folders that are not shards are refused; aalab slurm's two scripts, run by sh as Slurm
-# would run them (SLURM_ARRAY_TASK_ID), merge into the same results; bad flags exit 2 naming the flag.
+# would run them (SLURM_ARRAY_TASK_ID), merge into the same results; a suite split by whole cases merges
+# into the unsharded suite's results; bad flags exit 2 naming the flag.
 . "$(dirname "$0")/lib.sh"
 PY=/usr/bin/python3
 CHECK="$top_srcdir/tests/integration/shard_check.py"
@@ -78,6 +79,35 @@ expect_stderr "warm-up 3.*warm-up 4|warm-up 4.*warm-up 3" "names the warm-ups"
 expect_status 2 "an unsharded result is not a shard" -- "$AALAB" merge --out "$TMP/m3" "$TMP/whole"
 expect_stderr "not the results of a shard" "says so"
 expect_status 2 "merge without --out" -- "$AALAB" merge "$TMP/s0"
+
+# a suite is split by whole cases, balanced by frames x pixels
+cat >"$TMP/suite.json" <<'JSON'
+{"suite": "shardtest", "scenes": ["thin-wires", "moving-sphere", "cutout-fence"], "sizes": ["64x36", "96x54"],
+ "frames": 2, "reference": {"samples": 4}, "methods": ["none", "fxaa", "taa"]}
+JSON
+expect_status 0 "the suite unsharded" -- "$AALAB" run "$TMP/suite.json" --local --quiet --out "$TMP/suite"
+for i in 0 1 2; do
+	expect_status 0 "suite shard $i of 3" -- "$AALAB" run "$TMP/suite.json" --shard "$i/3" --quiet --out "$TMP/u$i"
+done
+$PY - "$TMP" <<'PY' && pass "suite shards: two whole cases each, in order" || fail "suite shards"
+import json, sys
+for i, scene in enumerate(("thin-wires", "moving-sphere", "cutout-fence")):
+    r = json.load(open("%s/u%d/results.json" % (sys.argv[1], i)))
+    assert [c["id"] for c in r["cases"]] == [scene + "/default/64x36", scene + "/default/96x54"], r["cases"]
+    assert r["shard"]["cases"] == {"first": 2 * i, "count": 2} and "frames" not in r["shard"]
+PY
+expect_status 0 "merge of the suite's shards" -- "$AALAB" merge --out "$TMP/suite-merged" "$TMP/u0" "$TMP/u1" "$TMP/u2"
+$PY "$CHECK" --all "$TMP/suite" "$TMP/suite-merged" >"$TMP/check" &&
+	pass "merged suite = unsharded suite: every value but times (taa too: whole cases need no warm-up)" ||
+	{ fail "merged suite"; cat "$TMP/check"; }
+[ -f "$TMP/suite-merged/cases/moving-sphere_default_96x54/frames/taa/0001.png" ] &&
+	[ -f "$TMP/suite-merged/cases/cutout-fence_default_64x36/report.html" ] &&
+	pass "the cases' folders, images and reports" || fail "merged suite files"
+expect_status 2 "a suite without shard 1" -- "$AALAB" merge --out "$TMP/sm2" "$TMP/u0" "$TMP/u2"
+expect_stderr "missing cases moving-sphere/default/64x36, moving-sphere/default/96x54 \(shard 1 of 3\)" \
+	"names the missing cases"
+expect_status 2 "more shards than cases" -- "$AALAB" run "$TMP/suite.json" --shard 0/7 --quiet --out "$TMP/x"
+expect_stderr "7 shards of a suite of 6 cases" "says why"
 
 # --shard errors
 expect_status 2 "--shard 3/3" -- "$AALAB" run "$TMP/job.json" --shard 3/3 --quiet --out "$TMP/x"

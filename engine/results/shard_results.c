@@ -1,5 +1,6 @@
 /* Shards' results: written with the whole job they belong to, read back, and merged into the results of
  * the whole job (docs/farm.md, "Merging"). */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -9,17 +10,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../farm.h"
 #include "../shard.h"
 #include "results.h"
 #include "shard_results.h"
 
-int aa_shard_results_write(const struct aa_job_result *r, const struct aa_job_spec *whole, int index, int count,
-			   const char *dir, struct aa_error *err)
+/* Each frame's error-threshold curve, per method: what results.json stores only as a mean. */
+static json_t *curves_json(const struct aa_job_result *r)
 {
-	json_t *root = aa_results_to_json(r), *shard = aa_shard_json(whole, index, count);
 	json_t *curves = json_array();
-	/* what results.json does not store per frame: each frame's error-threshold curve, so that the merged
-	 * curve is the mean over every frame of the job, as the unsharded run computes it */
 	for (int i = 0; curves && i < r->method_count; i++) {
 		json_t *frames = json_array();
 		for (int k = 0; frames && k < r->methods[i].frame_count; k++) {
@@ -31,6 +30,28 @@ int aa_shard_results_write(const struct aa_job_result *r, const struct aa_job_sp
 			json_array_append_new(frames, curve);
 		}
 		json_array_append_new(curves, frames);
+	}
+	return curves;
+}
+
+int aa_shard_results_write(const struct aa_suite_result *r, const struct aa_job_spec *whole, int index, int count,
+			   const char *dir, struct aa_error *err)
+{
+	if (r->case_count < 1)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "no results to write");
+	/* the reports (and, rewritten below with the shard's key, results.json) as for any run */
+	if (aa_suite_results_write(r, dir, err))
+		return -1;
+	json_t *root = aa_suite_results_to_json(r), *shard = aa_shard_json(whole, index, count);
+	json_t *curves = json_array();
+	/* so that the merged curve is the mean over every frame of the job, as the unsharded run computes it:
+	 * per method for a job, per case and method for a suite */
+	for (int c = 0; curves && c < r->case_count; c++)
+		json_array_append_new(curves, curves_json(r->cases[c]));
+	if (curves && !r->spec.is_suite) {
+		json_t *one = json_incref(json_array_get(curves, 0));
+		json_decref(curves);
+		curves = one;
 	}
 	if (!root || !shard || !curves || json_object_set_new(shard, "error_threshold_curves", curves) < 0 ||
 	    json_object_set_new(root, "shard", shard) < 0) {
@@ -53,7 +74,7 @@ int aa_shard_results_write(const struct aa_job_result *r, const struct aa_job_sp
 	with_newline[len + 1] = '\0';
 	int rc = aa_results_write_file_atomic(dir, "results.json", with_newline, len + 1, err);
 	free(with_newline);
-	return rc || aa_report_write_html(r, dir, err) ? -1 : 0;
+	return rc;
 }
 
 /* ---- reading results.json back ---- */
@@ -176,7 +197,8 @@ static int read_frames(const json_t *jm, const char *path, int first_frame, int 
 	return 0;
 }
 
-int aa_results_from_json(const json_t *doc, struct aa_job_result *out, struct aa_error *err)
+int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, struct aa_job_result *out,
+			 struct aa_error *err)
 {
 	memset(out, 0, sizeof *out);
 	if (json_object_get(doc, "cases"))
@@ -262,8 +284,7 @@ int aa_results_from_json(const json_t *doc, struct aa_job_result *out, struct aa
 		if (read_frames(item, path, spec->first_frame, spec->frames, spec->timing_repeat, m, err))
 			return -1;
 		/* a shard's per-frame curves (aa_shard_results_write) replace the mean curve */
-		const json_t *curves = json_array_get(json_object_get(json_object_get(doc, "shard"),
-								       "error_threshold_curves"), i);
+		const json_t *curves = json_array_get(curves_per_method, i);
 		for (int k = 0; json_is_array(curves) && k < m->frame_count; k++) {
 			const json_t *curve = json_array_get(curves, (size_t)k);
 			for (int t = 0; json_array_size(curve) == AA_THRESHOLD_COUNT && t < AA_THRESHOLD_COUNT; t++)
@@ -312,7 +333,7 @@ static int read_image(const char *dir, const char *kind, const char *label, int 
  * the last frame of shard s-1 and the first of shard s, the 8-bit images each scored. */
 static void border_flicker(const struct aa_shard_merge *m, int s, int begin, FILE *notes)
 {
-	const struct aa_job_result *r = m->result;
+	const struct aa_job_result *r = m->result->cases[0];
 	struct aa_image_rgba8 ref_prev = {0}, ref = {0}, out_prev = {0}, out = {0};
 	int prev_begin, prev_end;
 	aa_shard_range(r->spec.frames, s - 1, m->shard_count, &prev_begin, &prev_end);
@@ -356,6 +377,7 @@ static void place_shard(struct aa_job_result *w, const struct aa_job_result *s, 
 	}
 }
 
+/* The shards none of docs is, named by their frames (or a suite's cases); AA_ERR_INVALID when any. */
 static int check_shards(struct shard_doc *docs, int n, int count, const struct aa_job_spec *whole,
 			struct aa_error *err)
 {
@@ -365,19 +387,182 @@ static int check_shards(struct shard_doc *docs, int n, int count, const struct a
 		int have = 0;
 		for (int k = 0; k < n; k++)
 			have += docs[k].doc && docs[k].index == s;
-		if (have == 0) {
-			int b, e;
+		if (have)
+			continue;
+		int b, e;
+		size_t len = strlen(missing);
+		if (whole->is_suite) {
+			aa_shard_cases(whole, s, count, &b, &e);
+			for (int c = b; c < e; c++) {
+				char id[512];
+				aa_case_id(whole, c, id, sizeof id);
+				len = strlen(missing);
+				if (len < sizeof missing)
+					snprintf(missing + len, sizeof missing - len, "%s%s", absent || c > b ? ", " : "", id);
+			}
+			len = strlen(missing);
+			if (len < sizeof missing)
+				snprintf(missing + len, sizeof missing - len, " (shard %d of %d)", s, count);
+		} else {
 			aa_shard_range(whole->frames, s, count, &b, &e);
-			size_t len = strlen(missing);
 			if (len < sizeof missing)
 				snprintf(missing + len, sizeof missing - len, "%s%d-%d (shard %d of %d)", absent ? ", " : "",
 					 whole->first_frame + b, whole->first_frame + e - 1, s, count);
-			absent++;
 		}
+		absent++;
 	}
 	if (absent)
-		return aa_error_set(err, AA_ERR_INVALID, "", "missing frames %s; run %s again and merge", missing,
-				    absent > 1 ? "those shards" : "that shard");
+		return aa_error_set(err, AA_ERR_INVALID, "", "missing %s %s; run %s again and merge",
+				    whole->is_suite ? "cases" : "frames", missing, absent > 1 ? "those shards" : "that shard");
+	return 0;
+}
+
+static const struct shard_doc *doc_of(const struct shard_doc *docs, int s)
+{
+	while (!docs->doc || docs->index != s)
+		docs++;
+	return docs;
+}
+
+/* Earliest start, the sum of wall times (the machine time of the whole job), and a note when a shard ran on
+ * another device than shard 0. */
+static void account(struct aa_suite_result *w, const struct aa_job_result *part, const char *started_at,
+		    double wall_seconds, const char *dir, FILE *notes)
+{
+	if (!w->started_at[0] || strcmp(started_at, w->started_at) < 0) /* ISO 8601 UTC sorts as text */
+		snprintf(w->started_at, sizeof w->started_at, "%s", started_at);
+	if (isfinite(wall_seconds))
+		w->wall_seconds += wall_seconds;
+	if (w->case_count > 0 && notes && strcmp(part->device_name, w->cases[0]->device_name) != 0)
+		fprintf(notes, "%s ran on %s, shard 0 on %s: their times are not comparable\n", dir, part->device_name,
+			w->cases[0]->device_name);
+}
+
+/* A job's shards: frames placed at their job ordinals. */
+static int merge_frames(struct aa_shard_merge *out, const struct shard_doc *docs, const struct aa_job_spec *whole,
+			FILE *notes, struct aa_error *err)
+{
+	struct aa_job_result *w = calloc(1, sizeof *w), *part = calloc(1, sizeof *part);
+	int rc = -1;
+	if (!w || !part) {
+		free(w);
+		free(part);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	}
+	w->spec = *whole;
+	w->method_count = whole->method_count;
+	w->reference.frames = calloc((size_t)whole->frames, sizeof *w->reference.frames);
+	w->reference.frame_count = whole->frames;
+	bool ok = w->reference.frames != NULL;
+	for (int i = 0; i < whole->method_count; i++) {
+		struct aa_method_result *m = &w->methods[i];
+		snprintf(m->label, sizeof m->label, "%s", whole->methods[i].label);
+		m->method = whole->methods[i].method;
+		m->params = whole->methods[i].params;
+		m->frames = calloc((size_t)whole->frames, sizeof *m->frames);
+		m->timed = calloc((size_t)whole->frames * (size_t)whole->timing_repeat, sizeof *m->timed);
+		m->frame_count = whole->frames;
+		m->timed_count = whole->frames * whole->timing_repeat;
+		ok = ok && m->frames && m->timed;
+	}
+	out->result->cases[0] = w;
+	out->result->case_count = 1;
+	if (!ok) {
+		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		goto done;
+	}
+	for (int s = 0; s < out->shard_count; s++) {
+		const struct shard_doc *d = doc_of(docs, s);
+		int begin, end;
+		aa_shard_range(whole->frames, s, out->shard_count, &begin, &end);
+		aa_job_result_free(part);
+		if (aa_results_from_json(d->doc, json_object_get(d->shard, "error_threshold_curves"), part, err) < 0) {
+			aa_error_prefix(err, "%s/results.json", d->dir);
+			goto done;
+		}
+		if (part->spec.first_frame != whole->first_frame + begin || part->spec.frames != end - begin) {
+			aa_error_set(err, AA_ERR_INVALID, "", "%s: frames %d-%d, but shard %d of %d of this job is frames "
+				     "%d-%d", d->dir, part->spec.first_frame, part->spec.first_frame + part->spec.frames - 1, s,
+				     out->shard_count, whole->first_frame + begin, whole->first_frame + end - 1);
+			goto done;
+		}
+		if (s == 0) { /* what does not depend on the frames: the first shard's */
+			memcpy(w->scene_name, part->scene_name, sizeof w->scene_name);
+			memcpy(w->scene_file, part->scene_file, sizeof w->scene_file);
+			w->scene_triangles = part->scene_triangles;
+			memcpy(w->device_name, part->device_name, sizeof w->device_name);
+			memcpy(w->driver_info, part->driver_info, sizeof w->driver_info);
+			w->timestamp_period_ns = part->timestamp_period_ns;
+			w->plan_count = part->plan_count;
+			memcpy(w->plan, part->plan, sizeof w->plan);
+			w->reference.samples = part->reference.samples;
+			memcpy(w->reference.pattern, part->reference.pattern, sizeof w->reference.pattern);
+			w->reference.memory_bytes = part->reference.memory_bytes;
+			for (int i = 0; i < w->method_count; i++) {
+				struct aa_method_result *m = &w->methods[i];
+				memcpy(m->path_taken, part->methods[i].path_taken, sizeof m->path_taken);
+				m->memory_count = part->methods[i].memory_count;
+				memcpy(m->memory, part->methods[i].memory, sizeof m->memory);
+				m->memory_bytes = part->methods[i].memory_bytes;
+			}
+		}
+		account(out->result, part, part->started_at, part->wall_seconds, d->dir, notes);
+		place_shard(w, part, begin);
+	}
+	memcpy(w->started_at, out->result->started_at, sizeof w->started_at);
+	w->wall_seconds = out->result->wall_seconds;
+	for (int s = 1; s < out->shard_count; s++) {
+		int begin, end;
+		aa_shard_range(whole->frames, s, out->shard_count, &begin, &end);
+		border_flicker(out, s, begin, notes);
+	}
+	rc = 0;
+done:
+	aa_job_result_free(part);
+	free(part);
+	return rc;
+}
+
+/* A suite's shards: whole cases, each read as it was written, in the suite's order. */
+static int merge_cases(struct aa_shard_merge *out, const struct shard_doc *docs, const struct aa_job_spec *whole,
+		       FILE *notes, struct aa_error *err)
+{
+	for (int s = 0; s < out->shard_count; s++) {
+		const struct shard_doc *d = doc_of(docs, s);
+		int begin, end;
+		aa_shard_cases(whole, s, out->shard_count, &begin, &end);
+		const json_t *cases = json_object_get(d->doc, "cases");
+		if ((int)json_array_size(cases) != end - begin)
+			return aa_error_set(err, AA_ERR_INVALID, "", "%s: %zu cases, but shard %d of %d of this suite has %d",
+					    d->dir, json_array_size(cases), s, out->shard_count, end - begin);
+		for (int c = begin; c < end; c++) {
+			const json_t *doc = json_array_get(cases, (size_t)(c - begin));
+			char id[512];
+			aa_case_id(whole, c, id, sizeof id);
+			const char *got = json_string_value(json_object_get(doc, "id"));
+			if (!got || strcmp(got, id) != 0)
+				return aa_error_set(err, AA_ERR_INVALID, "", "%s: case %d is %s, but this suite's case %d is %s",
+						    d->dir, c - begin, got ? got : "(no id)", c, id);
+			struct aa_job_result *r = calloc(1, sizeof *r);
+			if (!r)
+				return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+			out->result->cases[c] = r;
+			out->result->case_count = c + 1;
+			const json_t *curves = json_array_get(json_object_get(d->shard, "error_threshold_curves"),
+							      (size_t)(c - begin));
+			if (aa_results_from_json(doc, curves, r, err) < 0) {
+				aa_error_prefix(err, "%s/results.json: cases[%d]", d->dir, c - begin);
+				return -1;
+			}
+			/* the case as the unsharded suite runs it: its labels and names are the suite's */
+			aa_job_case(whole, c, &r->spec);
+		}
+		const json_t *sd = d->doc;
+		account(out->result, out->result->cases[begin], json_string_value(json_object_get(sd, "started_at"))
+			? json_string_value(json_object_get(sd, "started_at")) : "",
+			json_is_number(json_object_get(sd, "wall_seconds")) ? json_number_value(json_object_get(sd, "wall_seconds"))
+									     : NAN, d->dir, notes);
+	}
 	return 0;
 }
 
@@ -386,11 +571,10 @@ int aa_shard_merge(const char *const *dirs, int dir_count, struct aa_shard_merge
 {
 	memset(out, 0, sizeof *out);
 	struct shard_doc *docs = calloc((size_t)(dir_count > 0 ? dir_count : 1), sizeof *docs);
-	struct aa_job_result *part = calloc(1, sizeof *part);
 	struct aa_job_spec whole;
 	const struct shard_doc *first = NULL;
 	int rc = -1;
-	if (!docs || !part) {
+	if (!docs) {
 		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		goto done;
 	}
@@ -444,98 +628,21 @@ int aa_shard_merge(const char *const *dirs, int dir_count, struct aa_shard_merge
 	}
 	if (check_shards(docs, dir_count, first->count, &whole, err))
 		goto done;
-
-	struct aa_job_result *w = out->result = calloc(1, sizeof *w);
 	out->shard_count = first->count;
+	out->result = calloc(1, sizeof *out->result);
 	out->dirs = calloc((size_t)first->count, sizeof *out->dirs);
-	if (!w || !out->dirs) {
+	if (!out->result || !out->dirs) {
 		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		goto done;
 	}
-	w->spec = whole;
-	w->method_count = whole.method_count;
-	w->reference.frames = calloc((size_t)whole.frames, sizeof *w->reference.frames);
-	w->reference.frame_count = whole.frames;
-	for (int i = 0; i < whole.method_count; i++) {
-		struct aa_method_result *m = &w->methods[i];
-		snprintf(m->label, sizeof m->label, "%s", whole.methods[i].label);
-		m->method = whole.methods[i].method;
-		m->params = whole.methods[i].params;
-		m->frames = calloc((size_t)whole.frames, sizeof *m->frames);
-		m->timed = calloc((size_t)whole.frames * (size_t)whole.timing_repeat, sizeof *m->timed);
-		m->frame_count = whole.frames;
-		m->timed_count = whole.frames * whole.timing_repeat;
-		if (!m->frames || !m->timed)
-			break;
-	}
-	if (!w->reference.frames || (whole.method_count > 0 && !w->methods[whole.method_count - 1].timed)) {
-		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-		goto done;
-	}
-	w->wall_seconds = 0;
-	for (int s = 0; s < first->count; s++) {
-		const struct shard_doc *d = docs;
-		while (!d->doc || d->index != s)
-			d++;
-		int begin, end;
-		aa_shard_range(whole.frames, s, first->count, &begin, &end);
-		aa_job_result_free(part);
-		if (aa_results_from_json(d->doc, part, err) < 0) {
-			aa_error_prefix(err, "%s/results.json", d->dir);
-			goto done;
-		}
-		if (part->spec.first_frame != whole.first_frame + begin || part->spec.frames != end - begin) {
-			aa_error_set(err, AA_ERR_INVALID, "", "%s: frames %d-%d, but shard %d of %d of this job is frames "
-				     "%d-%d", d->dir, part->spec.first_frame, part->spec.first_frame + part->spec.frames - 1, s,
-				     first->count, whole.first_frame + begin, whole.first_frame + end - 1);
-			goto done;
-		}
-		if (s == 0) { /* what does not depend on the frames: the first shard's */
-			memcpy(w->scene_name, part->scene_name, sizeof w->scene_name);
-			memcpy(w->scene_file, part->scene_file, sizeof w->scene_file);
-			w->scene_triangles = part->scene_triangles;
-			memcpy(w->device_name, part->device_name, sizeof w->device_name);
-			memcpy(w->driver_info, part->driver_info, sizeof w->driver_info);
-			w->timestamp_period_ns = part->timestamp_period_ns;
-			w->plan_count = part->plan_count;
-			memcpy(w->plan, part->plan, sizeof w->plan);
-			w->reference.samples = part->reference.samples;
-			memcpy(w->reference.pattern, part->reference.pattern, sizeof w->reference.pattern);
-			w->reference.memory_bytes = part->reference.memory_bytes;
-			memcpy(w->started_at, part->started_at, sizeof w->started_at);
-			for (int i = 0; i < w->method_count; i++) {
-				struct aa_method_result *m = &w->methods[i];
-				memcpy(m->path_taken, part->methods[i].path_taken, sizeof m->path_taken);
-				m->memory_count = part->methods[i].memory_count;
-				memcpy(m->memory, part->methods[i].memory, sizeof m->memory);
-				m->memory_bytes = part->methods[i].memory_bytes;
-			}
-		} else if (notes && strcmp(part->device_name, w->device_name) != 0) {
-			fprintf(notes, "%s ran on %s, shard 0 on %s: their times are not comparable\n", d->dir,
-				part->device_name, w->device_name);
-		}
-		if (strcmp(part->started_at, w->started_at) < 0) /* ISO 8601 UTC sorts as text */
-			memcpy(w->started_at, part->started_at, sizeof w->started_at);
-		if (isfinite(part->wall_seconds))
-			w->wall_seconds += part->wall_seconds; /* the machine time of the whole job */
-		place_shard(w, part, begin);
-		out->dirs[s] = strdup(d->dir);
-		if (!out->dirs[s]) {
+	out->result->spec = whole;
+	for (int s = 0; s < first->count; s++)
+		if (!(out->dirs[s] = strdup(doc_of(docs, s)->dir))) {
 			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 			goto done;
 		}
-	}
-	for (int s = 1; s < first->count; s++) {
-		int begin, end;
-		aa_shard_range(whole.frames, s, first->count, &begin, &end);
-		border_flicker(out, s, begin, notes);
-	}
-	rc = 0;
+	rc = whole.is_suite ? merge_cases(out, docs, &whole, notes, err) : merge_frames(out, docs, &whole, notes, err);
 done:
-	if (part) {
-		aa_job_result_free(part);
-		free(part);
-	}
 	for (int k = 0; docs && k < dir_count; k++)
 		json_decref(docs[k].doc);
 	free(docs);
@@ -546,10 +653,7 @@ done:
 
 void aa_shard_merge_free(struct aa_shard_merge *m)
 {
-	if (m->result) {
-		aa_job_result_free(m->result);
-		free(m->result);
-	}
+	aa_suite_result_free(m->result);
 	for (int s = 0; m->dirs && s < m->shard_count; s++)
 		free(m->dirs[s]);
 	free(m->dirs);
@@ -616,9 +720,50 @@ static int merge_image(const char *shard_dir, const char *dir, const char *kind,
 	return copy_file(from, to, err);
 }
 
+/* Every file under from into to (folders made), but the reports and results.json, which the merge
+ * writes anew: a link to a shard's report would be written through. */
+static int link_tree(const char *from, const char *to, struct aa_error *err)
+{
+	DIR *d = opendir(from);
+	if (!d)
+		return errno == ENOENT ? 0 : aa_error_set(err, AA_ERR_IO, "", "cannot read %s: %s", from, strerror(errno));
+	if (mkdir(to, 0755) < 0 && errno != EEXIST) {
+		closedir(d);
+		return aa_error_set(err, AA_ERR_IO, "", "cannot create %s: %s", to, strerror(errno));
+	}
+	int rc = 0;
+	struct dirent *e;
+	while (rc == 0 && (e = readdir(d))) {
+		if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || !strcmp(e->d_name, "report.html") ||
+		    !strcmp(e->d_name, "results.json"))
+			continue;
+		char a[4200], b[4200];
+		snprintf(a, sizeof a, "%s/%s", from, e->d_name);
+		snprintf(b, sizeof b, "%s/%s", to, e->d_name);
+		struct stat st;
+		if (stat(a, &st) < 0)
+			rc = aa_error_set(err, AA_ERR_IO, "", "cannot read %s: %s", a, strerror(errno));
+		else
+			rc = S_ISDIR(st.st_mode) ? link_tree(a, b, err) : copy_file(a, b, err);
+	}
+	closedir(d);
+	return rc;
+}
+
 int aa_shard_merge_images(const struct aa_shard_merge *m, const char *dir, struct aa_error *err)
 {
 	const struct aa_job_spec *spec = &m->result->spec;
+	if (spec->is_suite) { /* whole cases: their folders as they are */
+		char to[4200];
+		snprintf(to, sizeof to, "%s/cases", dir);
+		for (int s = 0; s < m->shard_count; s++) {
+			char from[4200];
+			snprintf(from, sizeof from, "%s/cases", m->dirs[s]);
+			if (link_tree(from, to, err))
+				return -1;
+		}
+		return 0;
+	}
 	if (!spec->keep_frames)
 		return 0;
 	for (int s = 0; s < m->shard_count; s++) {

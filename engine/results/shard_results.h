@@ -8,21 +8,26 @@
 
 #include "../job.h"
 
-/* Writes results.json (with "shard": aa_shard_json) and report.html of shard index of count of whole. */
-int aa_shard_results_write(const struct aa_job_result *r, const struct aa_job_spec *whole, int index, int count,
+struct aa_suite_result;
+
+/* Writes results.json (with "shard": aa_shard_json and each frame's error-threshold curve) and the
+ * reports of shard index of count of whole: r holds the shard's one case, or a suite shard's cases. */
+int aa_shard_results_write(const struct aa_suite_result *r, const struct aa_job_spec *whole, int index, int count,
 			   const char *dir, struct aa_error *err);
 
-/* A results.json document of a job that is not a suite, read back into a result: what its writer
- * (results_json.c) stores per frame and per timed render. Per-frame error-threshold curves are not stored;
- * every frame gets the job's mean curve. The error names the key at fault. */
-int aa_results_from_json(const json_t *doc, struct aa_job_result *out, struct aa_error *err);
+/* A results.json document of a job that is not a suite (or one case of a suite's), read back into a
+ * result: what its writer (results_json.c) stores per frame and per timed render. results.json keeps the
+ * error-threshold curve as a mean only: each frame gets its curve from curves_per_method ([method][frame],
+ * a shard's), or the mean when it is NULL. The error names the key at fault. */
+int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, struct aa_job_result *out,
+			 struct aa_error *err);
 
 /* Joins shard folders into one result of the whole job. Refuses (AA_ERR_INVALID, the message naming the
  * folders or the missing frames) folders of another job, duplicated shards and missing ones; a folder
  * without results.json counts as a missing shard. notes receives what the merge could not compute (a
  * border frame's flicker without images), one line each; it may be NULL. */
 struct aa_shard_merge {
-	struct aa_job_result *result; /* the whole job's, frames in order */
+	struct aa_suite_result *result; /* the whole job's: its one case with frames in order, or a suite's cases */
 	int shard_count;
 	char **dirs;                  /* the folder of shard i, [shard_count] */
 };

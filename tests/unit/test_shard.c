@@ -166,11 +166,51 @@ static void test_shard_job(void **state)
 	assert_int_equal(aa_shard_job(&whole, 0, 33, &s, &err), -1);
 	assert_string_equal(err.path, "shard");
 	assert_non_null(strstr(err.message, "1 to 32"));
-	struct aa_job_spec suite;
-	assert_int_equal(parse("{\"suite\": \"x\", \"scenes\": [\"thin-wires\"], \"sizes\": [\"64x36\", \"96x54\"]}",
+}
+
+/* A suite splits by whole cases: contiguous, at least one each, cut nearest the cost's shares. */
+static void test_suite_cases(void **state)
+{
+	(void)state;
+	struct aa_job_spec suite, s;
+	struct aa_error err;
+	/* costs (frames x pixels) 1, 1, 1, 4, 1, 1, 1 (units of 10x10 x 10 frames) */
+	assert_int_equal(parse("{\"suite\": \"x\", \"cases\": [{\"size\": \"10x10\", \"frames\": 10}, "
+			       "{\"size\": \"10x10\", \"frames\": 10, \"path\": \"static\"}, {\"size\": \"10x10\", "
+			       "\"frames\": 10, \"first_frame\": 5}, {\"size\": \"20x20\", \"frames\": 10}, {\"size\": "
+			       "\"10x10\", \"frames\": 10, \"first_frame\": 9}, {\"size\": \"10x10\", \"frames\": 10, "
+			       "\"first_frame\": 7}, {\"size\": \"10x10\", \"frames\": 10, \"first_frame\": 8}]}",
 			       &suite, &err), 0);
-	assert_int_equal(aa_shard_job(&suite, 0, 1, &s, &err), -1);
+	assert_int_equal(suite.case_count, 7);
+	for (int count = 1; count <= 7; count++) {
+		int next = 0;
+		for (int i = 0; i < count; i++) {
+			int b, e;
+			aa_shard_cases(&suite, i, count, &b, &e);
+			assert_int_equal(b, next);
+			assert_true(e > b);
+			next = e;
+		}
+		assert_int_equal(next, 7);
+	}
+	int b, e;
+	aa_shard_cases(&suite, 0, 2, &b, &e); /* half of 10: after 3 cases (3) or 4 (7) are as near; the earlier */
+	assert_int_equal(e, 3);
+	aa_shard_cases(&suite, 1, 3, &b, &e); /* the large case alone in the middle */
+	assert_int_equal(b, 3);
+	assert_int_equal(e, 4);
+	assert_int_equal(aa_shard_job(&suite, 1, 3, &s, &err), 0);
+	assert_true(s.is_suite);
+	assert_int_equal(s.case_count, 1);
+	assert_int_equal(s.cases[0].width, 20);
+	assert_int_equal(s.warmup_frames, 0);
+	json_t *j = aa_shard_json(&suite, 1, 3);
+	assert_int_equal(json_integer_value(json_object_get(json_object_get(j, "cases"), "first")), 3);
+	assert_null(json_object_get(j, "frames"));
+	json_decref(j);
+	assert_int_equal(aa_shard_job(&suite, 0, 8, &s, &err), -1);
 	assert_string_equal(err.path, "shard");
+	assert_non_null(strstr(err.message, "valid: 1 to 7"));
 }
 
 /* A results document made here, written and read back: every per-frame value the writer stores comes
@@ -223,7 +263,7 @@ static void test_read_back(void **state)
 	json_t *doc = aa_results_to_json(&r);
 	assert_non_null(doc);
 	struct aa_job_result back;
-	assert_int_equal(aa_results_from_json(doc, &back, &err), 0);
+	assert_int_equal(aa_results_from_json(doc, NULL, &back, &err), 0);
 	assert_int_equal(back.spec.first_frame, 5);
 	assert_int_equal(back.method_count, 2);
 	for (int i = 0; i < 2; i++)
@@ -251,7 +291,7 @@ static void test_read_back(void **state)
 	json_t *m1 = json_array_get(json_object_get(doc, "methods"), 1);
 	json_object_set_new(m1, "label", json_string("ssaa:16"));
 	struct aa_job_result bad;
-	assert_int_equal(aa_results_from_json(doc, &bad, &err), -1);
+	assert_int_equal(aa_results_from_json(doc, NULL, &bad, &err), -1);
 	assert_string_equal(err.path, "methods[1]");
 	aa_job_result_free(&bad);
 	json_decref(doc);
@@ -264,7 +304,8 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_parse),          cmocka_unit_test(test_ranges),
 		cmocka_unit_test(test_warmup_defaults), cmocka_unit_test(test_warmup_field),
-		cmocka_unit_test(test_shard_job),      cmocka_unit_test(test_read_back),
+		cmocka_unit_test(test_shard_job),      cmocka_unit_test(test_suite_cases),
+		cmocka_unit_test(test_read_back),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
