@@ -19,7 +19,7 @@ const char aa_slurm_help[] =
 	"usage: aalab slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G]\n"
 	"                   [--time T] [--aalab PATH] [--submit] [--force]\n"
 	"\n"
-	"Splits the job into N shards of contiguous frames and writes, in DIR:\n"
+	"Splits the job into N shards of contiguous frames (a suite: of whole cases) and writes, in DIR:\n"
 	"  job.json        the job, in canonical form\n"
 	"  shards.sbatch   a Slurm array job, one task per shard: aalab run job.json --shard $SLURM_ARRAY_TASK_ID/N\n"
 	"                  into DIR/shards/TASK (requeued by Slurm when a node fails)\n"
@@ -27,7 +27,7 @@ const char aa_slurm_help[] =
 	"With --submit it runs sbatch for both and prints the Slurm job ids. DIR must be on storage that every\n"
 	"node sees (docs/farm.md).\n"
 	"\n"
-	"  --shards N        shards (array tasks), 1 to the job's frames\n"
+	"  --shards N        shards (array tasks), 1 to the job's frames (a suite's cases)\n"
 	"  --out DIR         the farm folder (created; a non-empty DIR only with --force)\n"
 	"  --partition P     #SBATCH --partition of both scripts\n"
 	"  --gres G          #SBATCH --gres of the shards, e.g. gpu:1 (one GPU per shard)\n"
@@ -93,8 +93,9 @@ static long sbatch(const char *const *args)
 
 struct slurm_options {
 	const char *dir, *aalab, *partition, *gres, *time;
-	int shards, frames, warmup;
+	int shards;
 	char hash[80];
+	char what[64];             /* "24 frames, warm-up 32" or "6 cases" */
 };
 
 static void common_lines(FILE *o, const struct slurm_options *so)
@@ -113,10 +114,10 @@ static char *shards_script(const struct slurm_options *so)
 	if (!o)
 		return NULL;
 	fprintf(o, "#!/bin/sh\n"
-		"# Written by 'aalab slurm': %d shards of job %s (%d frames, warm-up %d).\n"
-		"# Task I renders shard I of the job's frames into shards/I; merge.sbatch joins them.\n"
+		"# Written by 'aalab slurm': %d shards of job %s (%s).\n"
+		"# Task I renders shard I of the job into shards/I; merge.sbatch joins them.\n"
 		"# Re-run one shard: sbatch --array=I %s/shards.sbatch\n",
-		so->shards, so->hash, so->frames, so->warmup, so->dir);
+		so->shards, so->hash, so->what, so->dir);
 	fprintf(o, "#SBATCH --job-name=aalab-shards\n#SBATCH --array=0-%d\n#SBATCH --ntasks=1\n#SBATCH --requeue\n"
 		"#SBATCH --output=%s/logs/shard-%%a.log\n", so->shards - 1, so->dir);
 	common_lines(o, so);
@@ -216,8 +217,10 @@ int cmd_slurm(int argc, char **argv)
 			err.path[0] ? ": " : "", err.message);
 		goto done;
 	}
-	so.frames = spec.frames;
-	so.warmup = aa_job_shard_warmup(&spec);
+	if (spec.is_suite)
+		snprintf(so.what, sizeof so.what, "%d cases", spec.case_count);
+	else
+		snprintf(so.what, sizeof so.what, "%d frames, warm-up %d", spec.frames, aa_job_shard_warmup(&spec));
 	aa_job_hash(&spec, so.hash, sizeof so.hash);
 
 	/* the folder, by absolute path: the scripts run on other nodes, from other folders */
@@ -281,8 +284,8 @@ int cmd_slurm(int argc, char **argv)
 		status = AA_EXIT_FAILED;
 		goto done;
 	}
-	printf("job %s: %d frames in %d shards (warm-up %d)\nwrote %s/shards.sbatch and %s/merge.sbatch\n", so.hash,
-	       so.frames, so.shards, so.warmup, dir, dir);
+	printf("job %s (%s) in %d shards\nwrote %s/shards.sbatch and %s/merge.sbatch\n", so.hash, so.what, so.shards,
+	       dir, dir);
 	if (!submit) {
 		printf("submit with:\n  id=$(sbatch --parsable %s/shards.sbatch)\n"
 		       "  sbatch --dependency=afterok:$id %s/merge.sbatch\n", dir, dir);
