@@ -28,13 +28,14 @@ const char aa_slurm_help[] =
 	"node sees (docs/farm.md).\n"
 	"\n"
 	"  --shards N        shards (array tasks), 1 to the job's frames (a suite's cases)\n"
-	"  --out DIR         the farm folder (created; a non-empty DIR only with --force)\n"
+	"  --out DIR         the farm folder (created; one that holds a job.json already only with --force)\n"
 	"  --partition P     #SBATCH --partition of both scripts\n"
 	"  --gres G          #SBATCH --gres of the shards, e.g. gpu:1 (one GPU per shard)\n"
 	"  --time T          #SBATCH --time of both scripts, e.g. 30:00\n"
 	"  --aalab PATH      the aalab the nodes run (default: this one, by absolute path)\n"
 	"  --submit          run sbatch and print the job ids\n"
-	"  --force           write into a non-empty DIR (an earlier farm folder of this command)\n"
+	"  --force           write the scripts into an earlier farm folder (its shards stay; each task\n"
+	"                    replaces its own, and merge checks that every shard is of this job)\n"
 	"\n"
 	"Exit status: 0 written (and submitted), 1 sbatch failed, 2 bad arguments or job.\n";
 
