@@ -218,6 +218,17 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 	jstr(device, "name", out->device_name, sizeof out->device_name);
 	jstr(device, "driver", out->driver_info, sizeof out->driver_info);
 	out->timestamp_period_ns = jnum(device, "timestamp_period_ns");
+	/* the scene's warnings, as written: "... and N more" stands for those not kept */
+	json_array_foreach(json_object_get(doc, "warnings"), i, item) {
+		const char *w = json_string_value(item);
+		int more;
+		if (!w)
+			continue;
+		if (sscanf(w, "... and %d more", &more) == 1)
+			out->warnings_dropped = more;
+		else if (out->warning_count < AA_MAX_WARNINGS)
+			snprintf(out->warnings[out->warning_count++], sizeof out->warnings[0], "%s", w);
+	}
 	if (need_array(doc, "passes", "passes", &v, err))
 		return -1;
 	json_array_foreach(v, i, item) {
@@ -495,6 +506,9 @@ static int merge_frames(struct aa_shard_merge *out, const struct shard_doc *docs
 			w->timestamp_period_ns = part->timestamp_period_ns;
 			w->plan_count = part->plan_count;
 			memcpy(w->plan, part->plan, sizeof w->plan);
+			w->warning_count = part->warning_count;
+			w->warnings_dropped = part->warnings_dropped;
+			memcpy(w->warnings, part->warnings, sizeof w->warnings);
 			w->reference.samples = part->reference.samples;
 			memcpy(w->reference.pattern, part->reference.pattern, sizeof w->reference.pattern);
 			w->reference.memory_bytes = part->reference.memory_bytes;
