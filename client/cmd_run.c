@@ -11,6 +11,7 @@
 
 #include "aa.h"
 #include "client.h"
+#include "methods/user_method.h"
 #include "out_dir.h"
 #include "results/results.h"
 
@@ -106,6 +107,8 @@ int cmd_run(int argc, char **argv)
 	const char *out_dir = NULL, *device = NULL, *connect = NULL;
 	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false;
 	struct aa_out_dir od = {0};
+	struct aa_job_spec spec;
+	bool spec_parsed = false;
 	int status = AA_EXIT_USAGE, c, idx;
 	optind = 1;
 	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
@@ -129,19 +132,25 @@ int cmd_run(int argc, char **argv)
 	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
 	if (!job)
 		goto out;
-	struct aa_job_spec spec;
 	struct aa_error err = {0};
-	int rc = aa_job_spec_from_json(job, &spec, &err);
+	/* user methods read their method and shader files from here (docs/user-methods.md) */
+	int rc = aa_job_spec_from_json_files(job, &aa_file_source_disk, &spec, &err);
 	if (rc) {
 		fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
 		json_decref(job);
 		goto out;
 	}
+	spec_parsed = true;
+	bool user_methods = false;
+	for (int i = 0; i < spec.method_count; i++)
+		user_methods |= aa_method_is_user(spec.methods[i].method);
 	/* A running aalabd does the work when one answers (or --connect names one). --local and --device run
-	 * here, and so does a scene given as a file path: the daemon takes scene names only. */
+	 * here, and so does a scene given as a file path: the daemon takes scene names only. User methods run
+	 * here unless --connect names a daemon: their files are on this machine, and a daemon runs them only
+	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device && !strchr(spec.scene, '/');
+	bool remote = !local && !device && !strchr(spec.scene, '/') && (!user_methods || connect);
 	if (remote && aa_conn_open(connect, &conn, cerr, sizeof cerr) && connect) {
 		fprintf(stderr, "aalab run: %s\n", cerr);
 		json_decref(job);
@@ -176,6 +185,15 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	json_decref(job);
+	/* a shader that does not compile is bad input: said before the scene is loaded and the device opened */
+	for (int i = 0; i < spec.method_count; i++) {
+		struct aa_user_method *um = (struct aa_user_method *)aa_user_method_of(spec.methods[i].method);
+		if (um && aa_user_method_compile(um, &err)) {
+			fprintf(stderr, "aalab run: methods[%d]: %s\n", i, err.message);
+			status = err.code == AA_ERR_INVALID ? AA_EXIT_USAGE : AA_EXIT_FAILED;
+			goto out;
+		}
+	}
 
 	struct aa_engine *engine;
 	struct aa_engine_options eo = {.device = device};
@@ -227,6 +245,8 @@ int cmd_run(int argc, char **argv)
 out:
 	if (status != AA_EXIT_OK)
 		aa_out_dir_discard(&od); /* half a result is no result; DIR stays as it was */
+	if (spec_parsed)
+		aa_job_spec_release(&spec);
 	json_decref(overrides);
 	return status;
 }

@@ -17,6 +17,7 @@ extern const struct aa_method aa_method_fxaa_cs;
 extern const struct aa_method aa_method_asaa;
 extern const struct aa_method aa_method_t2msaa;
 extern const struct aa_method aa_method_rsaa;
+extern const struct aa_method aa_method_user;
 
 const struct aa_method *const aa_methods[] = {
 	&aa_method_none,
@@ -33,6 +34,7 @@ const struct aa_method *const aa_methods[] = {
 	&aa_method_asaa,
 	&aa_method_t2msaa,
 	&aa_method_rsaa,
+	&aa_method_user,
 };
 const int aa_method_count = (int)(sizeof aa_methods / sizeof aa_methods[0]);
 
@@ -50,4 +52,10 @@ int aa_method_param_index(const struct aa_method *m, const char *name)
 		if (strcmp(m->params[i].name, name) == 0)
 			return i;
 	return -1;
+}
+
+int aa_method_create(const struct aa_method *m, struct aa_renderer *r, const struct aa_method_params *p,
+		     struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err)
+{
+	return m->create_self ? m->create_self(m, r, p, info, out, err) : m->create(r, p, info, out, err);
 }
