@@ -54,6 +54,8 @@ struct aa_file_source;
 int aa_job_spec_from_json_files(const json_t *job, const struct aa_file_source *files, struct aa_job_spec *spec,
 				struct aa_error *err);
 void aa_job_spec_release(struct aa_job_spec *spec);
+/* Whether an item of a job's "methods" names a user method ("user:file=...", {"name": "user", ...}). */
+bool aa_job_method_is_user(const json_t *method);
 void aa_job_spec_retain(const struct aa_job_spec *spec);
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
 /* Parses "WIDTHxHEIGHT" ("640x360"), each 1..AA_MAX_SIZE; errors have path "size" (the CLI's --size). */

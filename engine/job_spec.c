@@ -234,6 +234,14 @@ static bool is_user_text(const char *text)
 	return *text == ':' || *text == '\0';
 }
 
+bool aa_job_method_is_user(const json_t *method)
+{
+	if (json_is_string(method))
+		return is_user_text(json_string_value(method));
+	const json_t *name = json_object_get(method, "name");
+	return json_is_object(method) && json_is_string(name) && !strcmp(json_string_value(name), "user");
+}
+
 /* {"name": "ssaa", "params": {"samples": 16}} */
 static int parse_method_object(const json_t *obj, const char *path, const struct aa_file_source *files,
 			       struct aa_method_spec *ms, struct aa_error *err)

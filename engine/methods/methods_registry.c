@@ -1,4 +1,5 @@
-/* The list of AA methods: adding a method adds one line here. */
+/* The list of AA methods: adding a method adds one line here. User methods (`user`, user_method.h) are
+ * not listed: each is made from its method file, and `aalab methods` describes `user` after these. */
 #include <string.h>
 
 #include "method.h"
@@ -17,7 +18,6 @@ extern const struct aa_method aa_method_fxaa_cs;
 extern const struct aa_method aa_method_asaa;
 extern const struct aa_method aa_method_t2msaa;
 extern const struct aa_method aa_method_rsaa;
-extern const struct aa_method aa_method_user;
 
 const struct aa_method *const aa_methods[] = {
 	&aa_method_none,
@@ -34,7 +34,6 @@ const struct aa_method *const aa_methods[] = {
 	&aa_method_asaa,
 	&aa_method_t2msaa,
 	&aa_method_rsaa,
-	&aa_method_user,
 };
 const int aa_method_count = (int)(sizeof aa_methods / sizeof aa_methods[0]);
 

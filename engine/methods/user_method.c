@@ -290,30 +290,10 @@ const struct aa_method aa_user_method_functions = {
 	.create_self = aa_user_method_create,
 };
 
-/* The registry's `user`: what `aalab methods` lists, and the name a method string starts with. A job
- * names a method file (user:file=...), which job_spec.c reads into a method of its own. */
-static int user_placeholder_create(struct aa_renderer *r, const struct aa_method_params *p,
-				   struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err)
-{
-	(void)r, (void)p, (void)info, (void)out;
-	return aa_error_set(err, AA_ERR_INVALID, "", "user: needs its method file: user:file=FILE.json");
-}
-
-static void user_placeholder_reset(struct aa_method_state *s) { (void)s; }
-static void user_placeholder_destroy(struct aa_method_state *s) { (void)s; }
-static int user_placeholder_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err)
-{
-	(void)s, (void)ctx;
-	return aa_error_set(err, AA_ERR_INTERNAL, "", "user: no method file");
-}
-
+/* `user` as `aalab methods` and aalabd's `methods` describe it: a job names a method file
+ * (user:file=...), which job_spec.c reads into a method of its own. */
 const struct aa_method aa_method_user = {
 	.name = "user",
-	.summary = "your own GLSL passes from a method file: user:file=FILE.json[,PARAM=VALUE...] "
-		   "(docs/user-methods.md)",
+	.summary = "your own GLSL passes from a method file: user:file=FILE.json[,PARAM=VALUE...]",
 	.seed = "docs/user-methods.md",
-	.create = user_placeholder_create,
-	.render = user_placeholder_render,
-	.reset = user_placeholder_reset,
-	.destroy = user_placeholder_destroy,
 };

@@ -28,6 +28,10 @@ struct aa_file_source {
 };
 /* Files on disk; relative names from the current directory. */
 extern const struct aa_file_source aa_file_source_disk;
+/* The files of a JSON object {"name": "text", ...} (a job's files sent to aalabd), which must outlive
+ * the source; any other name is not found. */
+struct json_t;
+void aa_file_source_json(const struct json_t *files, struct aa_file_source *out);
 /* `name` as written inside the file `referrer` (a method file naming its shader): a relative name is
  * taken from the referrer's folder. */
 void aa_file_join(const char *referrer, const char *name, char *out, size_t size);
@@ -124,5 +128,7 @@ struct aa_method_result;
 int aa_user_method_create(const struct aa_method *m, struct aa_renderer *r, const struct aa_method_params *p,
 			  struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err);
 extern const struct aa_method aa_user_method_functions; /* render, reset, destroy of every user method */
+/* `user` as `aalab methods` describes it (not in aa_methods: it runs only as a method file's method). */
+extern const struct aa_method aa_method_user;
 
 #endif

@@ -52,6 +52,29 @@ static int disk_read(void *ctx, const char *name, char **text, size_t *size, str
 
 const struct aa_file_source aa_file_source_disk = {.read = disk_read};
 
+static int json_read(void *ctx, const char *name, char **text, size_t *size, struct aa_error *err)
+{
+	const json_t *v = json_object_get(ctx, name);
+	if (!json_is_string(v))
+		return aa_error_set(err, AA_ERR_NOT_FOUND, "", "%s: not among the files sent with the job", name);
+	size_t n = json_string_length(v);
+	if (n > AA_USER_FILE_MAX)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: %zu bytes; a method or shader file may have at most %d",
+				    name, n, AA_USER_FILE_MAX);
+	*text = malloc(n + 1);
+	if (!*text)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	memcpy(*text, json_string_value(v), n);
+	(*text)[n] = '\0';
+	*size = n;
+	return 0;
+}
+
+void aa_file_source_json(const struct json_t *files, struct aa_file_source *out)
+{
+	*out = (struct aa_file_source){.read = json_read, .ctx = (void *)files};
+}
+
 void aa_file_join(const char *referrer, const char *name, char *out, size_t size)
 {
 	const char *slash = strrchr(referrer, '/');
@@ -624,7 +647,7 @@ static int parse_method(struct ctx *c, struct aa_user_method *um, const struct a
 		    "'_' and '.'", um->name);
 		goto out;
 	}
-	if (aa_method_find(um->name) || !strcmp(um->name, "reference")) {
+	if (aa_method_find(um->name) || !strcmp(um->name, "reference") || !strcmp(um->name, "user")) {
 		bad(c->err, c->path, c->file, "name", "\"%s\" is a built-in method's name; choose another, so that results "
 		    "tell them apart", um->name);
 		goto out;
@@ -704,7 +727,7 @@ int aa_user_method_load(const char *file, const struct aa_file_source *src, cons
 	struct ctx c = {.path = path, .file = file, .err = err};
 	if (src->read(src->ctx, file, &text, &size, err)) {
 		snprintf(err->path, sizeof err->path, "%s", path);
-		aa_error_prefix(err, "user: file");
+		aa_error_prefix(err, "user");
 		user_method_free(um);
 		return -1;
 	}
