@@ -22,6 +22,9 @@ struct user_push {
 	uint32_t params[AA_MAX_PARAMS];
 };
 _Static_assert(offsetof(struct user_push, params) == 44, "the prelude's AaPush puts params at 44");
+_Static_assert(sizeof(struct user_push) <= 128, "push constants within Vulkan's guaranteed 128 bytes");
+_Static_assert(AA_USER_MAX_READS <= AA_PASS_MAX_SOURCES, "a fragment pass binds every read");
+_Static_assert(AA_USER_MAX_READS + 1 <= AA_COMPUTE_MAX_BINDINGS, "a compute pass binds every read and its output");
 
 struct user_pass_gpu {
 	struct aa_gpu_image image[2];       /* [1] only for a pass kept for the next frame */

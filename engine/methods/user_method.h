@@ -13,7 +13,8 @@
 #include "method.h"
 
 #define AA_USER_MAX_PASSES 8
-#define AA_USER_MAX_READS 7           /* a compute pass binds its reads and its output: 8 bindings */
+#define AA_USER_MAX_READS 8           /* a fragment pass binds AA_PASS_MAX_SOURCES; a compute pass its reads
+                                       * and its output, within AA_COMPUTE_MAX_BINDINGS */
 #define AA_USER_FILE_MAX (256 * 1024) /* bytes of a method file or of one shader file */
 #define AA_USER_NAME_MAX 24           /* method, pass and parameter names (a pass name is a timer span) */
 #define AA_USER_PATH_MAX 256          /* a file name as written, joined to its folder */

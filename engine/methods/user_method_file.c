@@ -750,6 +750,9 @@ int aa_user_method_load(const char *file, const struct aa_file_source *src, cons
 	for (int i = 0; i < AA_MAX_PARAMS && um->params[i].name; i++)
 		um->method.param_count = i + 1;
 	um->method.needs = needs_of(um);
+	/* the scene is drawn once a frame at one sample a pixel: at the pixel centre alpha is tested once per
+	 * pixel, as for none and fxaa; jittered, every frame tests a new sample point, as for taa */
+	um->method.alpha_rule = um->jitter_length ? AA_ALPHA_PER_SAMPLE : AA_ALPHA_PER_PIXEL;
 	*out = um;
 	return 0;
 }

@@ -199,6 +199,79 @@ static void test_bad_files(void **state)
 	assert_non_null(strstr(err.message, "gives none"));
 }
 
+/* The limits follow the engine's (AA_MAX_PARAMS parameters; reads within a fragment pass's sources and a
+ * compute pass's bindings) and the alpha rule follows how the scene is drawn: at the pixel centre once a
+ * frame it is per pixel, as for none and fxaa, history or not; jittered it is per sample, as for taa. */
+static int parse_text(const char *json, const char **message)
+{
+	static char msg[600];
+	files_reset();
+	file_put("l.json", json);
+	file_put("a.frag", "void main() { aa_write(vec4(0)); }\n");
+	file_put("a.comp", "void main() { aa_write(vec4(0)); }\n");
+	const struct aa_method *m = NULL;
+	struct aa_method_params p;
+	struct aa_error err = {0};
+	int rc = aa_user_method_parse("file=l.json", &source, "methods[0]", &m, &p, &err);
+	snprintf(msg, sizeof msg, "%s", err.message);
+	*message = msg;
+	aa_method_unref(m);
+	return rc;
+}
+
+static void params_json(char *out, size_t size, int count)
+{
+	int n = snprintf(out, size, "{\"name\": \"lim\", \"params\": [");
+	for (int i = 0; i < count; i++)
+		n += snprintf(out + n, size - (size_t)n, "%s{\"name\": \"p%d\", \"type\": \"int\", \"default\": 1, "
+			      "\"min\": 0, \"max\": 9}", i ? ", " : "", i);
+	snprintf(out + n, size - (size_t)n, "], \"passes\": [{\"name\": \"a\", \"shader\": \"a.frag\"}]}");
+}
+
+/* A last pass (stage "frag" or "comp") that reads the five frame inputs and `earlier` passes plus `extra`. */
+static void reads_json(char *out, size_t size, const char *stage, int extra)
+{
+	snprintf(out, size, "{\"name\": \"lim\", \"passes\": [{\"name\": \"p0\", \"shader\": \"a.frag\"}, "
+		 "{\"name\": \"p1\", \"shader\": \"a.frag\"}, {\"name\": \"p2\", \"shader\": \"a.frag\"}, "
+		 "{\"name\": \"last\", \"shader\": \"a.%s\", \"reads\": [\"colour\", \"depth\", \"velocity\", "
+		 "\"normals\", \"ids\", \"p0\", \"p1\", \"p2\"%s]}]}", stage, extra ? ", \"previous:p0\"" : "");
+}
+
+static void test_limits_and_alpha(void **state)
+{
+	(void)state;
+	char json[4096];
+	const char *message;
+	params_json(json, sizeof json, AA_MAX_PARAMS);
+	assert_int_equal(parse_text(json, &message), 0);
+	params_json(json, sizeof json, AA_MAX_PARAMS + 1);
+	assert_int_equal(parse_text(json, &message), -1);
+	assert_non_null(strstr(message, "l.json: params: expected an array of at most 12 parameters"));
+	for (int compute = 0; compute < 2; compute++) {
+		reads_json(json, sizeof json, compute ? "comp" : "frag", 0);
+		if (parse_text(json, &message))
+			fail_msg("8 reads in a %s pass: %s", compute ? "compute" : "fragment", message);
+		reads_json(json, sizeof json, compute ? "comp" : "frag", 1);
+		assert_int_equal(parse_text(json, &message), -1);
+		assert_non_null(strstr(message, "l.json: passes[3].reads: 9 inputs; a pass reads at most 8"));
+	}
+
+	good_files(); /* history, no jitter */
+	const struct aa_method *m = NULL;
+	struct aa_method_params p;
+	struct aa_error err = {0};
+	assert_int_equal(aa_user_method_parse("file=m/my_aa.json", &source, "methods[0]", &m, &p, &err), 0);
+	assert_string_equal(aa_alpha_rule_name(aa_method_alpha_rule(m, &p)), "per-pixel");
+	aa_method_unref(m);
+	files_reset();
+	file_put("j.json", "{\"name\": \"jit\", \"jitter\": {\"sequence\": \"halton\", \"length\": 8}, "
+		 "\"passes\": [{\"name\": \"a\", \"shader\": \"a.frag\"}]}");
+	file_put("a.frag", "void main() { aa_write(vec4(0)); }\n");
+	assert_int_equal(aa_user_method_parse("file=j.json", &source, "methods[0]", &m, &p, &err), 0);
+	assert_string_equal(aa_alpha_rule_name(aa_method_alpha_rule(m, &p)), "per-sample");
+	aa_method_unref(m);
+}
+
 /* Job specs: user methods in both forms, their labels kept apart, the canonical form reads them again,
  * and references are released. */
 static void test_job_specs(void **state)
@@ -345,6 +418,7 @@ int main(void)
 		cmocka_unit_test(test_sha256),
 		cmocka_unit_test(test_good_file),
 		cmocka_unit_test(test_bad_files),
+		cmocka_unit_test(test_limits_and_alpha),
 		cmocka_unit_test(test_job_specs),
 		cmocka_unit_test(test_pass_glsl),
 		cmocka_unit_test(test_compile),
