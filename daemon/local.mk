@@ -38,7 +38,7 @@ dist_man_MANS = docs/aalab.1 docs/aalabd.8
 DAEMON_TESTS = tests/integration/daemon_protocol.py tests/integration/daemon_jobs.py \
 	tests/integration/daemon_recovery.py tests/integration/daemon_limits.py tests/integration/daemon_lockout.py \
 	tests/integration/daemon_disk.py tests/integration/daemon_config.py tests/integration/daemon_http.py \
-	tests/integration/daemon_docs.py \
+	tests/integration/daemon_docs.py tests/integration/daemon_user_methods.py \
 	tests/integration/daemon_cli.sh \
 	tests/integration/daemon_systemd.py tests/integration/protocol_example.sh \
 	tests/integration/systemd_units.sh tests/integration/dashboard.sh tests/cli_outdir.sh

@@ -178,6 +178,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		if (aa_method_create(ms->method, js->renderer, &ms->params, m, &js->states[i], err)) {
 			aa_error_prefix(err, "%s", ms->label);
+			if (!err->path[0]) /* the job field at fault (a user method's shader that does not compile) */
+				snprintf(err->path, sizeof err->path, "methods[%d]", i);
 			return -1;
 		}
 		if (spec->timing_repeat > 1 && has_history(ms)) {
