@@ -30,6 +30,8 @@ for m, passes in ((blur, ["shadow-map", "scene", "blur"]), (taa, ["shadow-map", 
     assert all(f["nonfinite"] == 0 for f in m["frames"])
     assert "SPIR-V compiled" in m["path_taken"], m["path_taken"]
 assert taa["params"] == {"feedback": 0.8, "sharpen": 0.15}, taa["params"]
+# the alpha rule follows how the scene is drawn: at the pixel centre (edge-blur), jittered (simple-taa)
+assert (blur["alpha_rule"], taa["alpha_rule"]) == ("per-pixel", "per-sample"), (blur["alpha_rule"], taa["alpha_rule"])
 assert [x["name"] for x in taa["memory"]] == ["scene colour", "scene velocity", "scene depth", "resolve A",
                                                "resolve B", "sharpen"], taa["memory"]
 assert [x["name"] for x in blur["memory"]] == ["scene colour", "scene depth", "blur"], blur["memory"]
@@ -50,6 +52,11 @@ cmp -s "$ex/edge_blur.frag" "$TMP/mine/edge_blur.frag" && fail "the copy's const
 	--out "$TMP/b" --methods "fxaa,smaa,user:file=my_blur.json,user:file=$ex/edge_blur.json")
 grep -q "^my-blur " "$TMP/out" && pass "the copy is in the table" || fail "table: $(cat "$TMP/out")"
 grep -q "my-blur" "$TMP/b/report.html" && pass "and in the report" || fail "report lacks my-blur"
+# the cost-vs-accuracy chart: one point (a circle titled "LABEL: MS ms ...") per method, the copy among them
+for label in fxaa smaa my-blur edge-blur; do
+	grep -q "<title>$label: [0-9.]* ms (p10-p90" "$TMP/b/report.html" && pass "a point for $label in the cost-vs-accuracy chart" ||
+		fail "no point for $label in the chart"
+done
 /usr/bin/python3 - "$TMP/b/results.json" <<'PY' && pass "its own numbers; the SPIR-V of the example came from the cache" || fail "the copy's results"
 import json, sys
 ms = {m["label"]: m for m in json.load(open(sys.argv[1]))["methods"]}
