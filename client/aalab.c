@@ -6,10 +6,12 @@
 
 static const struct aa_cmd_entry commands[] = {
 	/* name, usage, summary, exec[, full help] */
-	{"run", "run [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
-		"[--reference-samples N] [--repeat N] [--out DIR] [--device SEL] [--no-images] [--json] [--quiet]",
+	{"run", "run [JOB.json|SUITE] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
+		"[--reference-samples N] [--repeat N] [--label KEY=VALUE] [--out DIR] [--device SEL] [--no-images] [--json] "
+		"[--quiet]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
 	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
+	{"suites", "suites [--json]", "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
 	{"methods", "methods [--json]", "list the AA methods with their parameters, defaults and valid values",
 	 cmd_methods, NULL},
 	{"submit", "submit [JOB.json] [job flags of run] [--scene-file FILE] [--watch] [--connect ADDRESS] [--json]",
@@ -24,6 +26,8 @@ static const struct aa_cmd_entry commands[] = {
 	{"diff", "diff REF TEST [--metrics psnr,ssim,flip,fourier] [--json] [--error-map OUT.png] "
 		 "[--fail-above NAME=X ...] [--fail-below NAME=X ...] [--ppd X]",
 	 "compare two image files (PSNR, SSIM, FLIP, Fourier bands) and gate on thresholds", cmd_diff, aa_diff_help},
+	{"compare", "compare BASE NEW [--fail-if GATE ...] [--json] [--junit FILE] [--markdown FILE] [--allow-missing]",
+	 "compare two runs per case and method, and gate on quality and cost", cmd_compare, aa_compare_help},
 };
 
 static void usage(FILE *out)

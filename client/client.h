@@ -34,6 +34,13 @@ int cmd_jobs(int argc, char **argv);
 int cmd_cancel(int argc, char **argv);
 int cmd_get(int argc, char **argv);
 int cmd_diff(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+int cmd_suites(int argc, char **argv);
+extern const char aa_compare_help[];
+/* suite_table.c: the summary table of a suite's results.json, across cases (method rows per case). */
+void aa_print_suite_table(json_t *results, FILE *out);
+/* Prints the table of a results.json document: a suite's summary, or the methods of a job. */
+void aa_print_results_any(json_t *results, FILE *out);
 extern const char aa_diff_help[];
 
 /* job_args.c: the job flags of run and submit. The long options, for getopt_long with a longindex;
@@ -43,10 +50,13 @@ extern const char aa_diff_help[];
 	{"scene", required_argument, 0, AA_OPT_JOB}, {"path", required_argument, 0, AA_OPT_JOB}, \
 	{"methods", required_argument, 0, AA_OPT_JOB}, {"frames", required_argument, 0, AA_OPT_JOB}, \
 	{"first-frame", required_argument, 0, AA_OPT_JOB}, {"size", required_argument, 0, AA_OPT_JOB}, \
-	{"reference-samples", required_argument, 0, AA_OPT_JOB}, {"repeat", required_argument, 0, AA_OPT_JOB}
+	{"reference-samples", required_argument, 0, AA_OPT_JOB}, {"repeat", required_argument, 0, AA_OPT_JOB}, \
+	{"label", required_argument, 0, AA_OPT_JOB}, {"baseline", required_argument, 0, AA_OPT_JOB}
 int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *job);
+/* A job file, or the suite of that name ("smoke": suites/smoke.json) when no such file exists. */
 json_t *aa_job_load_file(const char *cmd, const char *path);
-/* The job: argv[first] (a job file) if given, with the flags' fields over it; NULL after printing why. */
+/* The job: argv[first] (a job file or suite name) if given, with the flags' fields over it (--label adds
+ * to the file's labels); NULL after printing why. */
 json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *overrides);
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
@@ -60,10 +70,12 @@ int aa_conn_send(struct aa_conn *c, json_t *msg, const void *payload, size_t siz
 json_t *aa_conn_read(struct aa_conn *c, char **payload, size_t *size);
 json_t *aa_conn_request(struct aa_conn *c, json_t *msg, char **payload, size_t *size);
 /* Options of the service commands: [JOB] [--connect ADDRESS] [--json] and, where the command's help
- * names them, --state, --out, --file, --no-images. Returns 0, 1 (help printed) or -1 (usage printed). */
+ * names them, --state, --out, --file, --no-images, --label, --suite. Returns 0, 1 (help printed) or -1 (usage printed). */
 struct aa_service_args {
-	const char *connect, *job, *state, *out, *file;
+	const char *connect, *job, *state, *out, *file, *suite;
 	bool json, no_images;
+	int label_count;           /* --label KEY=VALUE filters (aalab list) */
+	const char *labels[16];
 };
 int aa_service_args(const char *cmd, const char *help, int argc, char **argv, struct aa_service_args *a);
 /* 0 for an ok reply; otherwise prints "aalab CMD: path: message" and returns the exit status. */

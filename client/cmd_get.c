@@ -50,7 +50,9 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 	json_t *f;
 	json_array_foreach(json_object_get(r, "files"), i, f) {
 		const char *name = json_string_value(f);
-		bool image = name && (!strncmp(name, "frames/", 7) || !strncmp(name, "diff/", 5) || !strncmp(name, "flip/", 5));
+		/* a suite's case folders hold images as a job's folder does */
+		const char *inner = name && !strncmp(name, "cases/", 6) && strchr(name + 6, '/') ? strchr(name + 6, '/') + 1 : name;
+		bool image = inner && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5));
 		if (!name || (image && !images) || strstr(name, "..") || name[0] == '/')
 			continue;
 		char *data;

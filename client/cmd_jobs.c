@@ -1,14 +1,19 @@
-/* aalab list: lists the jobs aalabd knows, oldest first, optionally only those in one state. */
+/* aalab list: lists the jobs aalabd knows, oldest first, optionally only those in one state, with some
+ * labels or of one suite. */
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
 #include "client.h"
+#include "farm.h"
 
 static const char list_help[] =
-	"usage: aalab list [--state queued|running|done|failed|cancelled] [--connect ADDRESS] [--json]\n"
+	"usage: aalab list [--state queued|running|done|failed|cancelled] [--label KEY=VALUE ...] [--suite NAME]\n"
+	"                  [--connect ADDRESS] [--json]\n"
 	"\n"
-	"Lists the jobs aalabd holds: id, state, progress, scene and methods.\n";
+	"Lists the jobs aalabd holds: id, state, progress, scene (or suite), labels, the verdict against a\n"
+	"baseline and methods. --label keeps jobs that have the label (repeatable: all of them); --suite keeps\n"
+	"the jobs of one suite.\n";
 
 int cmd_jobs(int argc, char **argv)
 {
@@ -29,6 +34,25 @@ int cmd_jobs(int argc, char **argv)
 	json_t *msg = json_pack("{ss}", "op", "list");
 	if (a.state)
 		json_object_set_new(msg, "state", json_string(a.state));
+	if (a.suite)
+		json_object_set_new(msg, "suite", json_string(a.suite));
+	if (a.label_count) {
+		json_t *labels = json_object();
+		for (int i = 0; i < a.label_count; i++) {
+			struct aa_label label[1];
+			int n = 0;
+			struct aa_error e = {0};
+			if (aa_label_parse(a.labels[i], label, &n, "label", &e)) {
+				fprintf(stderr, "aalab list: --label: %s\n", e.message);
+				json_decref(labels);
+				json_decref(msg);
+				aa_conn_close(conn);
+				return AA_EXIT_USAGE;
+			}
+			json_object_set_new(labels, label[0].key, json_string(label[0].value));
+		}
+		json_object_set_new(msg, "labels", labels);
+	}
 	json_t *r = aa_conn_request(conn, msg, NULL, NULL);
 	json_decref(msg);
 	int status = aa_reply_status("list", r);
@@ -38,7 +62,8 @@ int cmd_jobs(int argc, char **argv)
 	} else if (status == AA_EXIT_OK) {
 		size_t i;
 		json_t *job;
-		printf("%-8s %-10s %-9s %-16s %s\n", "ID", "STATE", "DONE", "SCENE", "METHODS");
+		printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", "ID", "STATE", "DONE", "SCENE", "LABELS", "VERDICT",
+		       "METHODS");
 		json_array_foreach(json_object_get(r, "jobs"), i, job) {
 			json_t *spec = json_object_get(job, "spec"), *m;
 			char done[32], methods[256] = "";
@@ -51,9 +76,22 @@ int cmd_jobs(int argc, char **argv)
 				snprintf(methods + strlen(methods), sizeof methods - strlen(methods), "%s%s", k ? "," : "",
 					 label ? label : "?");
 			}
-			printf("%-8s %-10s %-9s %-16s %s\n", json_string_value(json_object_get(job, "id")),
-			       json_string_value(json_object_get(job, "state")), done,
-			       json_string_value(json_object_get(spec, "scene")), methods);
+			char scene[64], labels[256] = "";
+			json_t *cases = json_object_get(spec, "cases"), *v;
+			const char *key;
+			if (cases) /* a suite: its name and how many cases */
+				snprintf(scene, sizeof scene, "%s (%zu cases)",
+					 json_string_value(json_object_get(spec, "suite")) ? json_string_value(json_object_get(spec, "suite"))
+											     : "suite", json_array_size(cases));
+			else
+				snprintf(scene, sizeof scene, "%s", json_string_value(json_object_get(spec, "scene")));
+			json_object_foreach(json_object_get(spec, "labels"), key, v)
+				snprintf(labels + strlen(labels), sizeof labels - strlen(labels), "%s%s=%s", labels[0] ? "," : "",
+					 key, json_string_value(v));
+			const char *verdict = json_string_value(json_object_get(json_object_get(job, "compare"), "verdict"));
+			printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", json_string_value(json_object_get(job, "id")),
+			       json_string_value(json_object_get(job, "state")), done, scene, labels[0] ? labels : "-",
+			       verdict ? verdict : "-", methods);
 		}
 	}
 	json_decref(r);

@@ -11,15 +11,17 @@
 
 #include "aa.h"
 #include "client.h"
+#include "farm.h"
 #include "methods/user_method.h"
 #include "out_dir.h"
 #include "results/results.h"
 
 const char aa_run_help[] =
-	"usage: aalab run [JOB.json] [options]\n"
+	"usage: aalab run [JOB.json|SUITE] [options]\n"
 	"\n"
 	"Renders every frame of a camera path with each AA method and with a supersampled reference, and\n"
-	"compares them. Flags override the fields of JOB.json (docs/job-format.md).\n"
+	"compares them. Flags override the fields of JOB.json (docs/job-format.md). A job file may be a suite,\n"
+	"a matrix of scenes, paths and sizes; a suite is also found by name ('aalab suites' lists them).\n"
 	"\n"
 	"  --scene NAME|FILE       scene name (see 'aalab scenes') or scene file (default thin-wires)\n"
 	"  --path NAME             camera path: default, static, or one the scene defines (default default)\n"
@@ -31,6 +33,10 @@ const char aa_run_help[] =
 	"  --reference-samples N   samples of the accumulated reference, even (default 64)\n"
 	"  --repeat N              render and time each method's frame N times, the first scored, for\n"
 	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
+	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n"
+	"                          repeatable, stored in results.json (job field labels)\n"
+	"  --baseline JOB          aalabd only: compare the finished job with JOB, a job id or\n"
+	"                          latest:KEY=VALUE (job field baseline)\n"
 	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS); written to a\n"
 	"                          folder beside it and renamed when complete. A non-empty DIR that is not\n"
 	"                          an aalab result is refused; an earlier aalab result only with --force\n"
@@ -47,6 +53,7 @@ const char aa_run_help[] =
 
 struct run_output {
 	const char *dir;
+	const struct aa_job_spec *spec;
 	bool images;
 	bool quiet;
 	volatile int frames_written; /* what Ctrl-C reports as kept */
@@ -57,7 +64,7 @@ struct run_output {
 static int on_event(const struct aa_event *ev, void *user)
 {
 	struct run_output *o = user;
-	if (o->images && aa_results_write_event_images(o->dir, ev, &o->write_err))
+	if (o->images && aa_suite_write_event_images(o->dir, o->spec, ev, &o->write_err))
 		o->failed_writes++;
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
@@ -150,17 +157,28 @@ int cmd_run(int argc, char **argv)
 	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device && !strchr(spec.scene, '/') && (!user_methods || connect);
+	bool remote = !local && !device && (!user_methods || connect);
+	for (int i = 0; i < aa_job_case_count(&spec); i++) {
+		struct aa_job_spec one;
+		aa_job_case(&spec, i, &one);
+		remote = remote && !strchr(one.scene, '/');
+	}
 	if (remote && aa_conn_open(connect, &conn, cerr, sizeof cerr) && connect) {
 		fprintf(stderr, "aalab run: %s\n", cerr);
 		json_decref(job);
 		status = AA_EXIT_FAILED;
 		goto out;
 	}
+	if (!conn && spec.baseline[0]) {
+		fprintf(stderr, "aalab run: baseline: names a job of aalabd, and this job runs in this process; "
+			"compare the results afterwards with 'aalab compare BASE DIR'\n");
+		json_decref(job);
+		goto out;
+	}
 	char dir[1024];
 	if (out_dir)
 		snprintf(dir, sizeof dir, "%s", out_dir);
-	else if (make_default_dir(spec.scene, dir, sizeof dir)) {
+	else if (make_default_dir(!spec.is_suite ? spec.scene : spec.suite[0] ? spec.suite : "suite", dir, sizeof dir)) {
 		fprintf(stderr, "aalab run: cannot choose an output directory under results/\n");
 		aa_conn_close(conn);
 		json_decref(job);
@@ -202,10 +220,16 @@ int cmd_run(int argc, char **argv)
 		status = err.path[0] ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;
 	}
-	struct run_output ro = {.dir = od.work, .images = images && spec.keep_frames, .quiet = quiet};
-	aa_out_dir_on_interrupt(&od, ro.images ? &ro.frames_written : NULL, spec.frames * (1 + spec.method_count));
-	struct aa_job_result *result = NULL;
-	rc = aa_job_run(engine, &spec, on_event, &ro, &result, &err);
+	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames, .quiet = quiet};
+	int frames_total = 0; /* images of every case: each frame's reference and methods */
+	for (int i = 0; i < aa_job_case_count(&spec); i++) {
+		struct aa_job_spec one;
+		aa_job_case(&spec, i, &one);
+		frames_total += one.frames * (1 + one.method_count);
+	}
+	aa_out_dir_on_interrupt(&od, ro.images ? &ro.frames_written : NULL, frames_total);
+	struct aa_suite_result *result = NULL;
+	rc = aa_suite_run(engine, &spec, NULL, NULL, on_event, &ro, &result, &err);
 	if (!quiet)
 		aa_progress_finish();
 	int validation_errors = aa_engine_validation_errors(engine);
@@ -220,7 +244,7 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	status = AA_EXIT_OK;
-	if (aa_results_write_json(result, od.work, &err) || aa_report_write_html(result, od.work, &err)) {
+	if (aa_suite_results_write(result, od.work, &err)) {
 		fprintf(stderr, "aalab run: %s\n", err.message);
 		status = AA_EXIT_FAILED;
 	} else if (aa_out_dir_commit(&od, cerr, sizeof cerr)) {
@@ -228,20 +252,24 @@ int cmd_run(int argc, char **argv)
 		status = AA_EXIT_FAILED;
 	}
 	if (print_json) {
-		json_t *j = aa_results_to_json(result);
+		json_t *j = aa_suite_results_to_json(result);
 		json_dumpf(j, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 		json_decref(j);
+	} else if (spec.is_suite) {
+		json_t *j = aa_suite_results_to_json(result);
+		aa_print_suite_table(j, stdout);
+		json_decref(j);
+		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
 	} else {
-		aa_print_table(result, stdout);
+		aa_print_table(result->cases[0], stdout);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
 	}
 	if (validation_errors) {
 		fprintf(stderr, "aalab run: %d Vulkan validation errors\n", validation_errors);
 		status = AA_EXIT_FAILED;
 	}
-	aa_job_result_free(result);
-	free(result);
+	aa_suite_result_free(result);
 out:
 	if (status != AA_EXIT_OK)
 		aa_out_dir_discard(&od); /* half a result is no result; DIR stays as it was */

@@ -11,12 +11,22 @@ static const char status_help[] =
 	"Shows a job's state and progress; once it is done, each method's GPU ms (median, p10-p90, n), memory,\n"
 	"PSNR, SSIM and alpha rule.\n";
 
+/* A string field, or fallback when it is missing. */
+static const char *text_of(json_t *o, const char *key, const char *fallback)
+{
+	const char *s = json_string_value(json_object_get(o, key));
+	return s ? s : fallback;
+}
+
 static void print_summary(json_t *summary)
 {
 	size_t i;
 	json_t *m;
 	json_array_foreach(summary, i, m) {
 		json_t *psnr = json_object_get(m, "psnr");
+		const char *case_id = json_string_value(json_object_get(m, "case"));
+		if (case_id && (i == 0 || strcmp(case_id, text_of(json_array_get(summary, i - 1), "case", ""))))
+			printf("  case %s\n", case_id); /* a suite's summary runs case by case */
 		char psnr_text[32];
 		if (json_is_number(psnr))
 			snprintf(psnr_text, sizeof psnr_text, "%.2f dB", json_number_value(psnr));
@@ -67,8 +77,34 @@ int cmd_status(int argc, char **argv)
 			printf("job %s: %s, %lld of %lld frames done\n", json_string_value(json_object_get(job, "id")),
 			       json_string_value(json_object_get(job, "state")), json_integer_value(json_object_get(job, "done")),
 			       json_integer_value(json_object_get(job, "total")));
-			printf("  scene %s, %s, %lld frames\n", json_string_value(json_object_get(spec, "scene")),
-			       json_string_value(json_object_get(spec, "size")), json_integer_value(json_object_get(spec, "frames")));
+			if (json_object_get(spec, "cases"))
+				printf("  suite %s, %zu cases\n", text_of(spec, "suite", ""),
+				       json_array_size(json_object_get(spec, "cases")));
+			else
+				printf("  scene %s, %s, %lld frames\n", json_string_value(json_object_get(spec, "scene")),
+				       json_string_value(json_object_get(spec, "size")),
+				       json_integer_value(json_object_get(spec, "frames")));
+			const char *key;
+			json_t *v, *cmp = json_object_get(job, "compare");
+			json_object_foreach(json_object_get(spec, "labels"), key, v)
+				printf("  label %s=%s\n", key, json_string_value(v));
+			if (cmp) { /* the verdict against the job's baseline */
+				json_t *counts = json_object_get(cmp, "counts"), *t;
+				size_t k;
+				printf("  baseline %s (job %s): %s", json_string_value(json_object_get(cmp, "baseline")),
+				       text_of(cmp, "job", "-"),
+				       json_string_value(json_object_get(cmp, "verdict")));
+				if (counts)
+					printf(", %lld of %lld gates tripped", json_integer_value(json_object_get(counts, "tripped")),
+					       json_integer_value(json_object_get(counts, "gates")));
+				if (json_object_get(cmp, "message"))
+					printf(": %s", json_string_value(json_object_get(cmp, "message")));
+				putchar('\n');
+				json_array_foreach(json_object_get(cmp, "tripped"), k, t)
+					printf("    tripped: %s %s: %s\n", json_string_value(json_object_get(t, "case")),
+					       json_string_value(json_object_get(t, "method")),
+					       json_string_value(json_object_get(t, "message")));
+			}
 			if (e)
 				printf("  error: %s\n", json_string_value(json_object_get(e, "message")));
 			print_summary(json_object_get(job, "summary"));

@@ -26,12 +26,21 @@ static void print_event(json_t *ev)
 {
 	const char *type = json_string_value(json_object_get(ev, "event"));
 	long long seq = json_integer_value(json_object_get(ev, "seq"));
+	const char *case_id = json_string_value(json_object_get(ev, "case")); /* a suite's events name their case */
 	if (!strcmp(type, "job_started")) {
-		printf("%lld started on %s: scene %s\n", seq, json_string_value(json_object_get(ev, "device")),
+		printf("%lld started on %s: scene %s", seq, json_string_value(json_object_get(ev, "device")),
 		       json_string_value(json_object_get(ev, "scene")));
+		if (case_id)
+			printf(", case %s (%lld of %lld)", case_id, json_integer_value(json_object_get(ev, "case_index")) + 1,
+			       json_integer_value(json_object_get(ev, "cases")));
+		putchar('\n');
 	} else if (!strcmp(type, "reference_frame") || !strcmp(type, "method_frame")) {
-		printf("%lld frame %lld %-12s", seq, json_integer_value(json_object_get(ev, "frame")),
-		       json_string_value(json_object_get(ev, "method")));
+		if (case_id)
+			printf("%lld %s frame %lld %-12s", seq, case_id, json_integer_value(json_object_get(ev, "frame")),
+			       json_string_value(json_object_get(ev, "method")));
+		else
+			printf("%lld frame %lld %-12s", seq, json_integer_value(json_object_get(ev, "frame")),
+			       json_string_value(json_object_get(ev, "method")));
 		print_number("gpu", json_object_get(ev, "gpu_ms"), " ms");
 		json_t *m = json_object_get(ev, "metrics");
 		if (m) {

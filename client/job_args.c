@@ -4,8 +4,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "client.h"
+#include "farm.h"
 
 static int parse_int(const char *cmd, const char *field, const char *text, json_int_t *out)
 {
@@ -49,6 +51,26 @@ int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *jo
 		json_object_set_new(job, "timing", json_pack("{sI}", "repeat", n));
 		return 0;
 	}
+	if (!strcmp(flag, "label")) { /* --label KEY=VALUE, repeatable: checked here so the message names it */
+		struct aa_label label[AA_MAX_LABELS];
+		int count = 0;
+		struct aa_error err = {0};
+		if (aa_label_parse(value, label, &count, "label", &err)) {
+			fprintf(stderr, "aalab %s: --label: %s\n", cmd, err.message);
+			return -1;
+		}
+		json_t *labels = json_object_get(job, "labels");
+		if (!json_is_object(labels)) {
+			labels = json_object();
+			json_object_set_new(job, "labels", labels);
+		}
+		json_object_set_new(labels, label[0].key, json_string(label[0].value));
+		return 0;
+	}
+	if (!strcmp(flag, "baseline")) {
+		json_object_set_new(job, "baseline", json_string(value));
+		return 0;
+	}
 	if (!strcmp(flag, "methods")) {
 		char **list;
 		int count;
@@ -69,6 +91,15 @@ int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *jo
 json_t *aa_job_load_file(const char *cmd, const char *path)
 {
 	json_error_t jerr;
+	char suite[1200];
+	struct aa_error err = {0};
+	if (access(path, F_OK) != 0 && !strchr(path, '/')) {
+		if (aa_suite_resolve(path, suite, sizeof suite, &err)) {
+			fprintf(stderr, "aalab %s: %s\n", cmd, err.message);
+			return NULL;
+		}
+		path = suite;
+	}
 	json_t *job = json_load_file(path, JSON_REJECT_DUPLICATES, &jerr);
 	if (!job) {
 		fprintf(stderr, "aalab %s: %s:%d:%d: %s\n", cmd, path, jerr.line, jerr.column, jerr.text);
@@ -96,6 +127,16 @@ json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *
 			return NULL;
 	} else {
 		job = json_object();
+	}
+	/* --label adds to the file's labels rather than replacing them all */
+	json_t *file_labels = json_object_get(job, "labels"), *flag_labels = json_object_get(overrides, "labels");
+	if (json_is_object(file_labels) && flag_labels) {
+		json_object_update(file_labels, flag_labels);
+		json_t *rest = json_copy(overrides);
+		json_object_del(rest, "labels");
+		json_object_update(job, rest);
+		json_decref(rest);
+		return job;
 	}
 	json_object_update(job, overrides);
 	return job;

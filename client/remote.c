@@ -254,11 +254,12 @@ int aa_reply_status(const char *cmd, json_t *reply)
 
 int aa_service_args(const char *cmd, const char *help, int argc, char **argv, struct aa_service_args *a)
 {
-	enum { OPT_CONNECT = 256, OPT_JSON, OPT_STATE, OPT_OUT, OPT_FILE, OPT_NO_IMAGES, OPT_HELP };
+	enum { OPT_CONNECT = 256, OPT_JSON, OPT_STATE, OPT_OUT, OPT_FILE, OPT_NO_IMAGES, OPT_LABEL, OPT_SUITE, OPT_HELP };
 	static const struct option opts[] = {
 		{"connect", required_argument, 0, OPT_CONNECT}, {"json", no_argument, 0, OPT_JSON},
 		{"state", required_argument, 0, OPT_STATE}, {"out", required_argument, 0, OPT_OUT},
 		{"file", required_argument, 0, OPT_FILE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
+		{"label", required_argument, 0, OPT_LABEL}, {"suite", required_argument, 0, OPT_SUITE},
 		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	memset(a, 0, sizeof *a);
@@ -272,6 +273,14 @@ int aa_service_args(const char *cmd, const char *help, int argc, char **argv, st
 		case OPT_OUT: a->out = optarg; break;
 		case OPT_FILE: a->file = optarg; break;
 		case OPT_NO_IMAGES: a->no_images = true; break;
+		case OPT_LABEL:
+			if (a->label_count >= 16) {
+				fprintf(stderr, "aalab %s: more than 16 --label filters\n", cmd);
+				return -1;
+			}
+			a->labels[a->label_count++] = optarg;
+			break;
+		case OPT_SUITE: a->suite = optarg; break;
 		case OPT_HELP: fputs(help, stdout); return 1;
 		default: fputs(help, stderr); return -1;
 		}

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "daemon.h"
+#include "farm_routes.h"
 #include "http_parse.h"
 #include "jobs.h"
 #include "results/results.h"
@@ -28,6 +29,8 @@ static const char *reason(int status)
 	case 401: return "Unauthorized";
 	case 404: return "Not Found";
 	case 405: return "Method Not Allowed";
+	case 409: return "Conflict";
+	case 500: return "Internal Server Error";
 	case 414: return "URI Too Long";
 	case 505: return "HTTP Version Not Supported";
 	case 431: return "Request Header Fields Too Large";
@@ -219,18 +222,19 @@ static void route(struct daemon *d, char *target, struct response *r)
 {
 	char *q = strchr(target, '?');
 	if (q)
-		*q = 0; /* the dashboard adds ?t= to defeat caches; no route reads the query */
+		*q++ = 0; /* the dashboard adds ?t= to defeat caches; the farm routes read the rest */
+	struct farm_reply farm;
+	if (farm_http(d, target, q, &farm)) {
+		if (farm.json)
+			json_body(r, farm.json);
+		else
+			text(r, farm.status, farm.text);
+		return;
+	}
 	if (!strcmp(target, "/healthz")) {
 		text(r, d->draining ? 503 : 200, d->draining ? "draining\n" : "ok\n");
 	} else if (!strcmp(target, "/metrics")) {
 		metrics(d, r);
-	} else if (!strcmp(target, "/v1/jobs") || !strcmp(target, "/v1/jobs/")) {
-		json_t *arr = json_array();
-		pthread_mutex_lock(&d->store->lock);
-		for (struct job *j = d->store->jobs; j; j = j->next)
-			json_array_append_new(arr, job_to_json(j));
-		pthread_mutex_unlock(&d->store->lock);
-		json_body(r, json_pack("{so}", "jobs", arr));
 	} else if (!strncmp(target, "/v1/jobs/", 9)) {
 		job_route(d, target + 9, r);
 	} else if (!strcmp(target, "/") || !strncmp(target, "/web/", 5)) {

@@ -10,6 +10,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "farm.h"
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "results/results.h"
@@ -64,6 +65,7 @@ static void job_free(struct job *job)
 	aa_job_spec_release(&job->spec);
 	json_decref(job->spec_json);
 	json_decref(job->summary);
+	json_decref(job->compare);
 	for (unsigned long i = 0; i < job->event_count; i++)
 		free(job->events[i]);
 	free(job->events);
@@ -85,11 +87,16 @@ json_t *job_to_json(const struct job *job)
 		json_object_set_new(o, "run", json_integer((json_int_t)job->run));
 	if (job->interruptions > 0)
 		json_object_set_new(o, "interruptions", json_integer(job->interruptions));
+	char hash[80]; /* what a job without a suite name is plotted and compared by (/v1/series) */
+	aa_job_hash(&job->spec, hash, sizeof hash);
+	json_object_set_new(o, "job_hash", json_string(hash));
 	if (job->state == JOB_FAILED)
 		json_object_set_new(o, "error", json_pack("{ss ss ss}", "code", aa_error_code_name(job->error.code),
 							  "message", job->error.message, "path", job->error.path));
 	if (job->summary)
 		json_object_set(o, "summary", job->summary);
+	if (job->compare)
+		json_object_set(o, "compare", job->compare);
 	if (job_state_final(job->state))
 		json_object_set_new(o, "bytes", json_integer((json_int_t)job->bytes));
 	return o;
@@ -215,7 +222,8 @@ static uint64_t tree_bytes(const char *dir)
  * keeps its event log (it says why). */
 static void clear_results(const char *dir, bool keep_events)
 {
-	const char *const parts[] = {"frames", "diff", "flip", "linear", "results.json", "report.html", "events.jsonl", NULL};
+	const char *const parts[] = {"frames", "diff", "flip", "linear", "cases", "results.json", "report.html",
+				     "events.jsonl", NULL}; /* cases/: a suite's case folders */
 	char path[1400];
 	for (int i = 0; parts[i]; i++) {
 		if (keep_events && !strcmp(parts[i], "events.jsonl"))
@@ -284,9 +292,11 @@ static struct job *load_job(struct store *s, const char *id)
 		snprintf(job->error.path, sizeof job->error.path, "%s",
 			 json_string_value(json_object_get(e, "path")) ? json_string_value(json_object_get(e, "path")) : "");
 	}
-	json_t *summary = json_object_get(o, "summary");
+	json_t *summary = json_object_get(o, "summary"), *compare = json_object_get(o, "compare");
 	if (summary)
 		job->summary = json_incref(summary);
+	if (json_is_object(compare))
+		job->compare = json_incref(compare);
 	json_decref(o);
 	if (job->state == JOB_RUNNING) {
 		/* the daemon died during this job: run it again from the start, unless it has done so before
@@ -427,7 +437,7 @@ struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const 
 	job->spec_json = aa_job_spec_to_json(spec);
 	snprintf(job->client, sizeof job->client, "%s", client);
 	job->submitted_at = now_s();
-	job->total = spec->frames * (1 + spec->method_count * spec->timing_repeat);
+	job->total = (int)aa_suite_total_units(spec);
 	job->events_loaded = true;
 	pthread_mutex_lock(&s->lock);
 	snprintf(job->id, sizeof job->id, "%06lu", s->next_id++);

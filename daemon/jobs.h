@@ -25,6 +25,7 @@ struct job {
 	int done, total;          /* units of work: frames x (1 + methods) */
 	struct aa_error error;    /* JOB_FAILED */
 	json_t *summary;          /* per-method summary once done */
+	json_t *compare;          /* the verdict against the job's baseline once done (daemon/farm.c), or NULL */
 	uint64_t bytes;           /* size of the job directory once finished */
 	bool cancel;              /* asked to stop (cancel op, or drain timeout when requeue is set) */
 	bool requeue;             /* interrupted by shutdown: stays queued on disk */
@@ -116,6 +117,15 @@ uint64_t store_measure(struct store *s, struct job *job);    /* bytes of the job
 void store_clear_results(struct store *s, struct job *job);  /* before a (re-)run */
 void store_remove_partial(struct store *s, struct job *job); /* a failed run's output, not its event log */
 void job_dir(const struct store *s, const struct job *job, char *out, size_t size);
+
+/* farm.c: baselines, label filters, comparisons and trends for build farms (docs/protocol.md) */
+/* The verdict of a finished job against its baseline: {"baseline", "job", "verdict", ...}, or NULL when the
+ * job names none. Called by the worker without the lock, once results.json is written. */
+json_t *farm_judge_baseline(struct store *s, struct job *job);
+/* Whether a job has every label of the filter and, when suite is not NULL, that suite (lock held). */
+bool farm_job_matches(const struct job *job, const struct aa_label *labels, int label_count, const char *suite);
+/* The suite a job is compared and plotted with: its suite name, or its job hash when it has none. */
+void farm_suite_key(const struct job *job, char *out, size_t size);
 
 /* worker.c: the GPU worker thread */
 int worker_start(struct store *s);

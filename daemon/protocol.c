@@ -9,6 +9,8 @@
 #include <sys/stat.h>
 
 #include "daemon.h"
+#include "farm.h"
+#include "farm_routes.h"
 #include "jobs.h"
 #include "methods/user_method.h"
 
@@ -188,6 +190,11 @@ static void submit_parsed(struct conn *c, json_t *tag, struct aa_job_spec *spec,
 	struct daemon *d = c->d;
 	struct aa_error err = {0};
 	char file[1024];
+	if (scene_text && spec->is_suite) {
+		protocol_error(c, tag, "invalid", "payload", "a suite names its scenes; send a scene payload with a job of "
+			       "one case");
+		return;
+	}
 	if (scene_text) {
 		/* checked now so that a bad scene is refused with its field, not failed later in the queue */
 		struct aa_scene *scene = NULL;
@@ -204,23 +211,43 @@ static void submit_parsed(struct conn *c, json_t *tag, struct aa_job_spec *spec,
 			return;
 		}
 		snprintf(spec->scene, sizeof spec->scene, "inline");
-	} else if (strchr(spec->scene, '/') || strstr(spec->scene, "..")) {
-		protocol_error(c, tag, "invalid", "job.scene", "the daemon takes scene names only (see the scenes op); "
-			       "send your own scene file as the payload of submit");
-		return;
-	} else if (aa_scene_resolve(spec->scene, file, sizeof file, &err)) {
-		protocol_error(c, tag, aa_error_code_name(err.code), "job.scene", "%s", err.message);
-		return;
 	}
-	double samples = spec->reference_samples;
-	for (int i = 0; i < spec->method_count; i++)
-		samples += (double)spec->timing_repeat * method_samples(&spec->methods[i]); /* repeats render again */
-	double budget = (double)spec->width * spec->height * spec->frames * samples;
+	/* every case's scene is a name the daemon knows; a suite's fields are cases[i].scene */
+	double budget = 0;
+	for (int i = 0; i < aa_job_case_count(spec); i++) {
+		struct aa_job_spec one;
+		aa_job_case(spec, i, &one);
+		char where[64];
+		snprintf(where, sizeof where, spec->is_suite ? "job.cases[%d].scene" : "job.scene", i);
+		if (!scene_text && (strchr(one.scene, '/') || strstr(one.scene, ".."))) {
+			protocol_error(c, tag, "invalid", where, "the daemon takes scene names only (see the scenes op); "
+				       "send your own scene file as the payload of submit");
+			return;
+		}
+		if (!scene_text && aa_scene_resolve(one.scene, file, sizeof file, &err)) {
+			protocol_error(c, tag, aa_error_code_name(err.code), where, "%s", err.message);
+			return;
+		}
+		double samples = one.reference_samples;
+		for (int m = 0; m < one.method_count; m++)
+			samples += (double)one.timing_repeat * method_samples(&one.methods[m]); /* repeats render again */
+		budget += (double)one.width * one.height * one.frames * samples;
+	}
 	if (budget > d->cfg.max_job_budget) {
 		protocol_error(c, tag, "limit", "job", "job budget %.3g (width x height x frames x (reference samples "
-			       "+ timing.repeat x method samples)) is over max-job-budget %.3g", budget,
+			       "+ timing.repeat x method samples), summed over cases) is over max-job-budget %.3g", budget,
 			       d->cfg.max_job_budget);
 		return;
+	}
+	struct aa_baseline baseline;
+	if (spec->baseline[0] && aa_baseline_parse(spec->baseline, &baseline, "baseline", &err) == 0 && !baseline.latest) {
+		pthread_mutex_lock(&d->store->lock);
+		bool known = store_find(d->store, baseline.job) != NULL;
+		pthread_mutex_unlock(&d->store->lock);
+		if (!known) {
+			protocol_error(c, tag, "not_found", "job.baseline", "no job '%s' to compare with", baseline.job);
+			return;
+		}
 	}
 	if (d->draining) {
 		protocol_error(c, tag, "shutting_down", "", "the daemon is shutting down; submit again after restart");
@@ -318,7 +345,7 @@ static void op_status(struct conn *c, json_t *msg, json_t *tag)
 
 static void op_list(struct conn *c, json_t *msg, json_t *tag)
 {
-	static const char *const keys[] = {"state", "limit", NULL};
+	static const char *const keys[] = {"state", "limit", "labels", "suite", NULL};
 	if (check_keys(c, msg, tag, keys))
 		return;
 	json_t *st = json_object_get(msg, "state"), *lim = json_object_get(msg, "limit");
@@ -331,14 +358,21 @@ static void op_list(struct conn *c, json_t *msg, json_t *tag)
 		return;
 	}
 	json_int_t limit = lim ? json_integer_value(lim) : 1000;
+	char path[64] = "", message[512] = "";
+	struct farm_filter *filter = farm_filter_from_request(json_object_get(msg, "labels"), json_object_get(msg, "suite"),
+							      path, sizeof path, message, sizeof message);
+	if (!filter) {
+		protocol_error(c, tag, "bad_request", path, "%s", message);
+		return;
+	}
 	json_t *arr = json_array();
 	pthread_mutex_lock(&c->d->store->lock);
 	int total = 0;
 	for (struct job *j = c->d->store->jobs; j; j = j->next)
-		total += !st || !strcmp(job_state_name(j->state), json_string_value(st));
+		total += (!st || !strcmp(job_state_name(j->state), json_string_value(st))) && farm_filter_matches(filter, j);
 	int skip = total > limit ? total - (int)limit : 0; /* the newest `limit` jobs */
 	for (struct job *j = c->d->store->jobs; j; j = j->next) {
-		if (st && strcmp(job_state_name(j->state), json_string_value(st)))
+		if ((st && strcmp(job_state_name(j->state), json_string_value(st))) || !farm_filter_matches(filter, j))
 			continue;
 		if (skip > 0) {
 			skip--;
@@ -347,6 +381,7 @@ static void op_list(struct conn *c, json_t *msg, json_t *tag)
 		json_array_append_new(arr, job_to_json(j));
 	}
 	pthread_mutex_unlock(&c->d->store->lock);
+	farm_filter_free(filter);
 	reply(c, tag, json_pack("{so}", "jobs", arr));
 }
 

@@ -55,14 +55,23 @@ int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *o
 {
 	static const char *const top[] = {"results.json", "report.html", "events.jsonl", "scene.json",
 					  "method-files.json", NULL};
+	/* a suite keeps each case's report and images under cases/NAME/ (docs/results-format.md) */
+	const char *inner = rel;
+	bool in_case = !strncmp(rel, "cases/", 6);
+	if (in_case) {
+		const char *name = rel + 6, *slash = strchr(name, '/');
+		if (!slash || !name_ok(name, (size_t)(slash - name)))
+			return -1;
+		inner = slash + 1;
+	}
 	/* images live in frames/, diff/ and flip/ as PNG, linear colour in linear/ as raw RGBA16F
 	 * (engine/results/results.h) */
 	bool ok = false;
 	for (int i = 0; top[i]; i++)
-		ok |= strcmp(rel, top[i]) == 0;
-	bool linear = !strncmp(rel, "linear/", 7);
-	if (!ok && (!strncmp(rel, "frames/", 7) || !strncmp(rel, "diff/", 5) || !strncmp(rel, "flip/", 5) || linear)) {
-		const char *name = strchr(rel, '/') + 1, *slash = strchr(name, '/');
+		ok |= strcmp(inner, top[i]) == 0 && (!in_case || !strcmp(inner, "report.html"));
+	bool linear = !strncmp(inner, "linear/", 7);
+	if (!ok && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5) || linear)) {
+		const char *name = strchr(inner, '/') + 1, *slash = strchr(name, '/');
 		if (slash && name_ok(name, (size_t)(slash - name))) {
 			const char *file = slash + 1;
 			size_t digits = strspn(file, "0123456789");
@@ -210,7 +219,8 @@ static void send_event(struct conn *c, char *line)
 	}
 	const struct cached_frame *frame = have ? frame_get(c, path, &st) : NULL;
 	if (frame) {
-		if (c->watch_frames != FRAMES_PNG) {
+		/* raw RGBA16F has no header: a suite's event carries its case's size, others the job's */
+		if (c->watch_frames == FRAMES_RGBA8 || (c->watch_frames == FRAMES_RGBA16F && !json_object_get(ev, "width"))) {
 			json_object_set_new(ev, "width", json_integer(frame->width));
 			json_object_set_new(ev, "height", json_integer(frame->height));
 		}
@@ -270,8 +280,12 @@ static void list_files(const char *base, const char *rel, json_t *out, int depth
 			continue;
 		char sub[600];
 		snprintf(sub, sizeof sub, "%s%s%s", rel, *rel ? "/" : "", de->d_name);
-		if (depth < 2 && (depth > 0 || !strcmp(de->d_name, "frames") || !strcmp(de->d_name, "diff") ||
-				  !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear")))
+		if (depth == 0 && !strcmp(de->d_name, "cases")) /* a suite: each case's folder is listed as a job's */
+			list_files(base, sub, out, -1);
+		else if (depth == -1)
+			list_files(base, sub, out, 0);
+		else if (depth < 2 && (depth > 0 || !strcmp(de->d_name, "frames") || !strcmp(de->d_name, "diff") ||
+				       !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear")))
 			list_files(base, sub, out, depth + 1);
 		else if (depth == 2 || strcmp(de->d_name, "job.json") != 0)
 			json_array_append_new(out, json_string(sub));

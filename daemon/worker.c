@@ -1,5 +1,5 @@
 /* The GPU worker thread: owns the engine (the Vulkan device) and the scene cache, takes queued jobs one
- * at a time, runs them through aa_job_run_scene, writes their results under the job directory and
+ * at a time, runs them (every case of a suite) through aa_suite_run, writes their results under the job directory and
  * turns engine events into the job's event log. The event loop never waits for it. With user methods
  * allowed, the engine lives in a worker process instead (worker_process.c) and this thread runs each job
  * there, relaying its events; the bookkeeping here is the same for both. */
@@ -10,6 +10,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "farm.h"
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "worker.h"
@@ -19,9 +20,11 @@
 /* The engine side of a job: renders it into its directory and hands each event to a sink, the job's log
  * in this thread or the worker process's pipe to this thread (worker_process.c). */
 struct render_ctx {
-	const struct aa_job_spec *spec;
+	const struct aa_job_spec *spec; /* the whole job: a suite's events name their case from it */
 	const char *dir;
-	int total;                /* units of work: frames x (1 + methods x repeats) */
+	struct scene_cache *scenes;
+	bool inline_scene;
+	long total;               /* units of work: per case frames x (1 + methods x repeats) */
 	int done;                 /* frame events so far */
 	const struct worker_sink *sink;
 	int failed_writes;
@@ -51,9 +54,36 @@ static json_t *started_event(const struct aa_job_result *r)
 			 r->spec.frames, "width", r->spec.width, "height", r->spec.height, "repeat", r->spec.timing_repeat);
 }
 
+/* A suite's events name their case; its images live in the case's folder (cases/NAME/...). */
+static void add_case(const struct aa_job_spec *spec, const struct aa_event *ev, json_t *o)
+{
+	if (!spec->is_suite)
+		return;
+	char id[512];
+	aa_case_id(spec, ev->case_index, id, sizeof id);
+	json_object_set_new(o, "case", json_string(id));
+	json_object_set_new(o, "case_index", json_integer(ev->case_index));
+	if (ev->type != AA_EVENT_JOB_STARTED && ev->result) { /* the case's size: raw frames streamed need it */
+		json_object_set_new(o, "width", json_integer(ev->result->spec.width));
+		json_object_set_new(o, "height", json_integer(ev->result->spec.height));
+	}
+	if (ev->type == AA_EVENT_JOB_STARTED)
+		json_object_set_new(o, "cases", json_integer(spec->case_count));
+}
+
+static void case_path(const struct aa_job_spec *spec, const struct aa_event *ev, char *rel, size_t size)
+{
+	char dir[600], inner[512];
+	aa_case_relpath(spec, ev->case_index, dir, sizeof dir);
+	if (!dir[0])
+		return;
+	snprintf(inner, sizeof inner, "%s", rel);
+	snprintf(rel, size, "%s/%s", dir, inner);
+}
+
 static json_t *frame_event(struct render_ctx *ctx, const struct aa_event *ev)
 {
-	char rel[256];
+	char rel[1200];
 	json_t *o;
 	bool images = ctx->spec->keep_frames;
 	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
@@ -79,17 +109,21 @@ static json_t *frame_event(struct render_ctx *ctx, const struct aa_event *ev)
 			      "mse", num(fr->metrics.mse));
 		aa_results_frame_relpath("frames", m->label, ev->frame_ordinal, rel, sizeof rel);
 		if (images) {
-			char diff[256];
+			char diff[1200];
 			aa_results_frame_relpath("diff", m->label, ev->frame_ordinal, diff, sizeof diff);
+			case_path(ctx->spec, ev, diff, sizeof diff);
 			json_object_set_new(o, "diff", json_string(diff));
 		}
 	}
+	case_path(ctx->spec, ev, rel, sizeof rel);
+	add_case(ctx->spec, ev, o);
 	if (images)
 		json_object_set_new(o, "image", json_string(rel));
 	if (images && ctx->spec->linear_frames) {
 		const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference"
 									  : ev->result->methods[ev->method_index].label;
 		aa_results_linear_relpath(label, ev->frame_ordinal, rel, sizeof rel);
+		case_path(ctx->spec, ev, rel, sizeof rel);
 		json_object_set_new(o, "linear", json_string(rel));
 	}
 	json_object_set_new(o, "done", json_integer(++ctx->done));
@@ -102,11 +136,14 @@ static int on_event(const struct aa_event *ev, void *user)
 	struct render_ctx *ctx = user;
 	const struct worker_sink *sink = ctx->sink;
 	switch (ev->type) {
-	case AA_EVENT_JOB_STARTED:
-		return sink->event(sink->ctx, started_event(ev->result));
+	case AA_EVENT_JOB_STARTED: {
+		json_t *o = started_event(ev->result);
+		add_case(ctx->spec, ev, o);
+		return sink->event(sink->ctx, o);
+	}
 	case AA_EVENT_REFERENCE_FRAME:
 	case AA_EVENT_METHOD_FRAME:
-		if (ctx->spec->keep_frames && aa_results_write_event_images(ctx->dir, ev, &ctx->write_err)) {
+		if (ctx->spec->keep_frames && aa_suite_write_event_images(ctx->dir, ctx->spec, ev, &ctx->write_err)) {
 			ctx->failed_writes++;
 			return 1; /* stored results must be complete; a failed write fails the job */
 		}
@@ -118,21 +155,39 @@ static int on_event(const struct aa_event *ev, void *user)
 	}
 }
 
-/* Per-method cost and accuracy, the numbers a dashboard plots: taken from results.json's methods. */
-static json_t *summarize(const json_t *results)
+/* Per-method cost and accuracy, the numbers a dashboard plots: taken from results.json's methods (for a
+ * suite, of every case, each entry naming its case). */
+static void summarize_case(json_t *out, json_t *doc, const char *case_id)
 {
-	json_t *out = json_array(), *m;
+	json_t *m;
 	size_t i;
-	json_array_foreach(json_object_get(results, "methods"), i, m) {
+	json_array_foreach(json_object_get(doc, "methods"), i, m) {
 		json_t *metrics = json_object_get(m, "metrics"), *gpu = json_object_get(m, "gpu_ms");
-		json_array_append_new(out, json_pack("{sO sO sO sO sO sO sO sO sO}", "label", json_object_get(m, "label"),
+		json_t *e = json_pack("{sO sO sO sO sO sO sO sO sO}", "label", json_object_get(m, "label"),
 			"gpu_ms", json_object_get(gpu, "median"), "gpu_ms_p10", json_object_get(gpu, "p10"),
 			"gpu_ms_p90", json_object_get(gpu, "p90"), "gpu_ms_n", json_object_get(gpu, "n"),
 			"memory_bytes", json_object_get(m, "memory_bytes"),
 			"psnr", json_object_get(json_object_get(metrics, "psnr"), "mean"),
 			"ssim", json_object_get(json_object_get(metrics, "ssim"), "mean"),
-			"alpha_rule", json_object_get(m, "alpha_rule")));
+			"alpha_rule", json_object_get(m, "alpha_rule"));
+		/* what trends plot besides (/v1/series) */
+		json_object_set(e, "flip", json_object_get(json_object_get(metrics, "flip"), "mean"));
+		json_object_set(e, "flicker", json_object_get(json_object_get(metrics, "flicker"), "mean"));
+		if (case_id)
+			json_object_set_new(e, "case", json_string(case_id));
+		json_array_append_new(out, e);
 	}
+}
+
+static json_t *summarize(const json_t *results)
+{
+	json_t *out = json_array(), *c;
+	size_t i;
+	json_t *cases = json_object_get(results, "cases");
+	if (!cases)
+		summarize_case(out, (json_t *)results, NULL);
+	json_array_foreach(cases, i, c)
+		summarize_case(out, c, json_string_value(json_object_get(c, "id")));
 	return out;
 }
 
@@ -143,12 +198,11 @@ static double now_s(void)
 	return ts.tv_sec + ts.tv_nsec / 1e9;
 }
 
-static const struct aa_scene *find_scene(struct scene_cache *scenes, const struct aa_job_spec *spec,
-					 bool inline_scene, const char *dir, char *file, size_t size,
-					 struct aa_error *err)
+static const struct aa_scene *find_scene(struct scene_cache *scenes, const char *scene_name, bool inline_scene,
+					 const char *dir, char *file, size_t size, struct aa_error *err)
 {
 	if (!inline_scene) {
-		if (aa_scene_resolve(spec->scene, file, size, err))
+		if (aa_scene_resolve(scene_name, file, size, err))
 			return NULL;
 	} else if ((size_t)snprintf(file, size, "%s/scene.json", dir) >= size) {
 		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
@@ -157,32 +211,44 @@ static const struct aa_scene *find_scene(struct scene_cache *scenes, const struc
 	return scene_cache_get(scenes, file, err);
 }
 
+/* Each case's scene, from the scene cache (aa_suite_run asks once per case). */
+static const struct aa_scene *case_scene(const struct aa_job_spec *c, void *user, struct aa_error *err)
+{
+	struct render_ctx *ctx = user;
+	char file[1400];
+	return find_scene(ctx->scenes, c->scene, ctx->inline_scene, ctx->dir, file, sizeof file, err);
+}
+
 void worker_render(struct aa_engine *engine, struct scene_cache *scenes, const struct aa_job_spec *spec,
 		   bool inline_scene, const char *dir, const struct worker_sink *sink, struct worker_outcome *out)
 {
-	struct render_ctx ctx = {.spec = spec, .dir = dir, .sink = sink,
-				 .total = spec->frames * (1 + spec->method_count * spec->timing_repeat)};
+	struct render_ctx ctx = {.spec = spec, .dir = dir, .scenes = scenes, .inline_scene = inline_scene,
+				 .sink = sink, .total = aa_suite_total_units(spec)};
 	char file[1400] = "";
 	memset(out, 0, sizeof *out);
-	struct aa_job_result *result = NULL;
+	struct aa_suite_result *result = NULL;
 	double t0 = now_s();
-	const struct aa_scene *scene = find_scene(scenes, spec, inline_scene, dir, file, sizeof file, &out->err);
-	int rc = scene ? aa_job_run_scene(engine, spec, scene, on_event, &ctx, &result, &out->err) : -1;
+	int rc = aa_suite_run(engine, spec, case_scene, &ctx, on_event, &ctx, &result, &out->err);
 	out->busy = now_s() - t0;
 	if (rc && ctx.failed_writes)
 		out->err = ctx.write_err;
 	if (rc == 0) {
-		snprintf(result->scene_file, sizeof result->scene_file, "%.1000s", inline_scene ? "scene.json" : file);
-		json_t *results = aa_results_to_json(result);
+		/* the scenes came from the cache: say which file each case used */
+		for (int i = 0; i < result->case_count; i++) {
+			struct aa_error ignored = {0};
+			if (inline_scene)
+				snprintf(file, sizeof file, "scene.json");
+			else if (aa_scene_resolve(result->cases[i]->spec.scene, file, sizeof file, &ignored))
+				file[0] = '\0';
+			snprintf(result->cases[i]->scene_file, sizeof result->cases[i]->scene_file, "%.1000s", file);
+		}
+		json_t *results = aa_suite_results_to_json(result);
 		out->summary = summarize(results);
 		json_decref(results);
-		if (aa_results_write_json(result, dir, &out->err) || aa_report_write_html(result, dir, &out->err))
+		if (aa_suite_results_write(result, dir, &out->err))
 			rc = -1;
 	}
-	if (result) {
-		aa_job_result_free(result);
-		free(result);
-	}
+	aa_suite_result_free(result);
 	out->rc = rc;
 	out->failed_writes = ctx.failed_writes;
 }
@@ -252,6 +318,9 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	struct aa_error err = out->err;
 	json_t *summary = out->summary;
 	out->summary = NULL;
+	/* the verdict against the job's baseline (results.json is written by now, in this process or the
+	 * worker process), ready before anyone can see the job done */
+	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
 	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !out->failed_writes);
 	if (failed)
 		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
@@ -268,8 +337,13 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 		job->state = JOB_DONE;
 		job->summary = json_incref(summary);
 		ev = json_pack("{ss so ss}", "event", "job_finished", "summary", summary, "results", "results.json");
+		if (verdict) {
+			job->compare = json_incref(verdict);
+			json_object_set_new(ev, "compare", verdict);
+		}
 	} else if (err.code == AA_ERR_CANCELLED && !out->failed_writes) {
 		json_decref(summary);
+		json_decref(verdict);
 		job->state = requeue ? JOB_QUEUED : JOB_CANCELLED;
 		ev = json_pack("{ss ss}", "event", "job_cancelled", "state", requeue ? "queued" : "cancelled");
 	} else {

@@ -24,6 +24,26 @@ struct aa_method_spec {
 	char label[AA_LABEL_MAX];  /* canonical text (aa_method_label), e.g. "ssaa", "ssaa:samples=4" */
 };
 
+/* One case of a suite (a job that is a matrix of cases, docs/job-format.md "Suites"): a scene on a
+ * camera path at a size, over a run of frames; the job's methods, reference and timing apply to each. */
+#define AA_MAX_CASES 64
+#define AA_CASE_SCENE_MAX 256
+struct aa_case_spec {
+	char scene[AA_CASE_SCENE_MAX]; /* name or path, as given */
+	char path[64];
+	int width, height;
+	int frames;
+	int first_frame;
+};
+
+/* Labels name a run for a build farm (commit, branch, build URL, machine): key=value, stored with the
+ * results and the daemon's job, never part of what is rendered. */
+#define AA_MAX_LABELS 16
+struct aa_label {
+	char key[32];              /* letters, digits, '.', '_', '-' */
+	char value[256];
+};
+
 struct aa_job_spec {
 	char scene[1024];          /* name or path, as given */
 	char path[64];             /* camera path name: "default", "static" or a path of the scene */
@@ -40,6 +60,15 @@ struct aa_job_spec {
 	int inject_nonfinite_frame; /* tests only, not in job JSON: this frame's shading emits NaN/Inf in a
 				     * sparse pixel pattern (-1: never) */
 	char name[128];            /* optional user label of the job */
+	/* suites: with is_suite the cases below are the job (the single-case fields above are unused);
+	 * without it the job is its one case, the fields above (aa_job_case) */
+	bool is_suite;
+	int case_count;
+	struct aa_case_spec cases[AA_MAX_CASES];
+	char suite[64];            /* the suite's name: jobs of one suite are compared and plotted together */
+	int label_count;
+	struct aa_label labels[AA_MAX_LABELS];
+	char baseline[160];        /* aalabd: the job to compare with, "000042" or "latest:KEY=VALUE,..." */
 };
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
@@ -60,6 +89,19 @@ void aa_job_spec_retain(const struct aa_job_spec *spec);
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
 /* Parses "WIDTHxHEIGHT" ("640x360"), each 1..AA_MAX_SIZE; errors have path "size" (the CLI's --size). */
 int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err);
+/* engine/job_suite.c: the parts of a job that make it a suite or name it for a farm. */
+/* The number of cases (1 for a job that is not a suite). */
+int aa_job_case_count(const struct aa_job_spec *spec);
+/* Case i as a job of its own: the single-case fields set from the case, no cases, labels kept. */
+void aa_job_case(const struct aa_job_spec *spec, int i, struct aa_job_spec *out);
+/* The case's stable id, "SCENE/PATH/WxH" (with "@FIRST" when it starts past frame 0): what pairs cases
+ * between two runs. */
+void aa_case_id(const struct aa_job_spec *spec, int i, char *out, size_t size);
+/* The value of label key, or NULL. */
+const char *aa_job_label(const struct aa_job_spec *spec, const char *key);
+/* "sha256:HEX" of what decides the numbers (cases, reference, methods, timing), not of names, labels
+ * or where images go: equal for two runs of the same job, and for the shards of one job. */
+void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size);
 /* Shared limits (the daemon adds its own budget on top). */
 #define AA_MAX_SIZE 8192
 #define AA_MAX_FRAMES 100000
@@ -208,6 +250,7 @@ struct aa_event {
 	const struct aa_image_rgba8 *diff;
 	const struct aa_image_rgba8 *flip_map; /* METHOD_FRAME: the FLIP error map in the magma colour map */
 	int done, total;           /* PROGRESS */
+	int case_index;            /* the case of a suite (aa_suite_run); 0 otherwise */
 };
 
 /* Return non-zero to cancel the job. */

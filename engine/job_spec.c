@@ -7,13 +7,15 @@
 #include <string.h>
 
 #include "job.h"
+#include "job_parse.h"
 #include "methods/user_method.h"
 
 /* first_frame is a frame index on the camera path; capped so first_frame + frames fits an int easily. */
 #define AA_MAX_FIRST_FRAME 10000000
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
-					"reference", "methods", "keep_frames", "linear_frames", "name", "timing", NULL };
+					"reference", "methods", "keep_frames", "linear_frames", "name", "timing",
+					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const reference_keys[] = { "samples", NULL };
 static const char *const method_keys[] = { "name", "params", NULL };
@@ -111,7 +113,7 @@ static int get_string(const json_t *v, const char *path, bool allow_empty, char 
 
 /* Scene names are looked up in the scene directories, so a name must not climb out of them; anything
  * that is not a plain name is a file path and must name a .json scene file. Resolution happens later. */
-static int check_scene_syntax(const char *scene, struct aa_error *err)
+static int check_scene_syntax(const char *scene, const char *path, struct aa_error *err)
 {
 	const size_t n = strlen(scene);
 	bool plain = isalnum((unsigned char)scene[0]) && n < 64;
@@ -121,7 +123,7 @@ static int check_scene_syntax(const char *scene, struct aa_error *err)
 		return 0;
 	if (n > 5 && strcmp(scene + n - 5, ".json") == 0)
 		return 0;
-	return bad(err, AA_ERR_INVALID, "scene",
+	return bad(err, AA_ERR_INVALID, path,
 		   "\"%.60s\" is neither a scene name (letters, digits, '.', '_', '-', starting with a letter or "
 		   "digit, under 64 bytes) nor a path to a .json scene file", scene);
 }
@@ -456,7 +458,7 @@ static int parse_job(const json_t *job, const struct aa_file_source *files, stru
 
 	const json_t *v;
 	if ((v = json_object_get(job, "scene")) &&
-	    (get_string(v, "scene", false, s.scene, sizeof s.scene, err) < 0 || check_scene_syntax(s.scene, err) < 0))
+	    (get_string(v, "scene", false, s.scene, sizeof s.scene, err) < 0 || check_scene_syntax(s.scene, "scene", err) < 0))
 		return -1;
 	if ((v = json_object_get(job, "path")) && get_string(v, "path", false, s.path, sizeof s.path, err) < 0)
 		return -1;
@@ -500,6 +502,8 @@ static int parse_job(const json_t *job, const struct aa_file_source *files, stru
 	if ((long)s.frames * s.timing_repeat > AA_MAX_FRAMES)
 		return bad(err, AA_ERR_LIMIT, "timing.repeat", "%d frames x %d repeats is over %d timed renders per "
 			   "method; lower frames or timing.repeat", s.frames, s.timing_repeat, AA_MAX_FRAMES);
+	if (aa_job_suite_from_json(job, &s, err) < 0)
+		return -1;
 	*spec = s;
 	return 0;
 }
@@ -524,5 +528,33 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,
 				"methods", methods, "keep_frames", spec->keep_frames, "linear_frames",
 				spec->linear_frames, "name", spec->name, "timing", "repeat", spec->timing_repeat);
+	aa_job_suite_to_json(spec, job);
 	return job;
+}
+
+/* The checks above, for the suite keys (engine/job_suite.c). */
+int aa_job_parse_int(const json_t *v, const char *path, long long min, long long max, int *out, struct aa_error *err)
+{
+	return get_int(v, path, min, max, out, err);
+}
+
+int aa_job_parse_string(const json_t *v, const char *path, bool allow_empty, char *out, size_t size,
+			struct aa_error *err)
+{
+	return get_string(v, path, allow_empty, out, size, err);
+}
+
+int aa_job_parse_keys(const json_t *obj, const char *path, const char *const *valid, struct aa_error *err)
+{
+	return check_keys(obj, path, valid, err);
+}
+
+int aa_job_parse_scene(const char *scene, const char *path, struct aa_error *err)
+{
+	return check_scene_syntax(scene, path, err);
+}
+
+const char *aa_job_json_type(const json_t *v)
+{
+	return type_name(v);
 }

@@ -102,8 +102,23 @@ void aa_sha256_final(struct aa_sha256 *h, uint8_t digest[32])
 	}
 }
 
-void aa_sha256_hex(const uint8_t digest[32], char out[65])
+void aa_sha256_digest_hex(const uint8_t digest[32], char out[65])
 {
 	for (int i = 0; i < 32; i++)
 		snprintf(out + 2 * i, 3, "%02x", digest[i]);
+}
+
+void aa_sha256(const void *data, size_t size, uint8_t digest[32])
+{
+	struct aa_sha256 h;
+	aa_sha256_init(&h);
+	aa_sha256_update(&h, data, size);
+	aa_sha256_final(&h, digest);
+}
+
+void aa_sha256_hex(const void *data, size_t size, char hex[65])
+{
+	uint8_t digest[32];
+	aa_sha256(data, size, digest);
+	aa_sha256_digest_hex(digest, hex);
 }

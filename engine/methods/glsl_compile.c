@@ -274,7 +274,7 @@ int aa_glsl_compile(const char *glsl, size_t size, bool compute, const char *sho
 	aa_sha256_update(&h, stage, 5);
 	aa_sha256_update(&h, glsl, size);
 	aa_sha256_final(&h, digest);
-	aa_sha256_hex(digest, hex);
+	aa_sha256_digest_hex(digest, hex);
 	aa_glsl_cache_dir(dir, sizeof dir);
 	if (dir[0]) {
 		snprintf(path, sizeof path, "%s/%s.spv", dir, hex);

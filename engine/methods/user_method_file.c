@@ -613,7 +613,7 @@ static void hash_method(struct aa_user_method *um, const char *text, size_t size
 		aa_sha256_update(&h, um->passes[i].source, um->passes[i].source_size);
 	}
 	aa_sha256_final(&h, digest);
-	aa_sha256_hex(digest, um->sha256);
+	aa_sha256_digest_hex(digest, um->sha256);
 }
 
 static int parse_method(struct ctx *c, struct aa_user_method *um, const struct aa_file_source *src, const char *text,

@@ -26,7 +26,7 @@ static const char *color(int i)
 	return palette[i % (int)(sizeof palette / sizeof palette[0])];
 }
 
-static void esc(FILE *o, const char *s)
+void aa_report_esc(FILE *o, const char *s)
 {
 	for (; s && *s; s++) {
 		switch (*s) {
@@ -38,6 +38,11 @@ static void esc(FILE *o, const char *s)
 		default: fputc((unsigned char)*s < 0x20 ? ' ' : *s, o);
 		}
 	}
+}
+
+static void esc(FILE *o, const char *s)
+{
+	aa_report_esc(o, s);
 }
 
 /* A number with fixed decimals, or a dash when there is none. */
@@ -383,7 +388,7 @@ static void chart_psnr_per_frame(FILE *o, const struct aa_job_result *r)
 
 /* ------------------------------------------------------------------------------------------- page */
 
-static const char style[] =
+const char aa_report_style[] =
 	":root{--fg:#0f172a;--mute:#64748b;--line:#e2e8f0;--bg:#f8fafc;--card:#fff;--accent:#2563eb}"
 	"*{box-sizing:border-box}"
 	"body{margin:0;background:var(--bg);color:var(--fg);font:15px/1.5 system-ui,-apple-system,'Segoe UI',"
@@ -475,6 +480,15 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 	if (isfinite(r->timestamp_period_ns))
 		snprintf(d + strlen(d), sizeof d - strlen(d), "timestamp period %g ns", r->timestamp_period_ns);
 	card(o, "Device", *r->device_name ? r->device_name : "unknown", d);
+	if (r->spec.label_count > 0) { /* the run's labels: which commit, branch, build, machine */
+		size_t used = 0;
+		d[0] = '\0';
+		for (int i = 0; i < r->spec.label_count && i < AA_MAX_LABELS && used < sizeof d; i++)
+			used += (size_t)snprintf(d + used, sizeof d - used, "%s%s=%s", i ? " \xc2\xb7 " : "",
+						 r->spec.labels[i].key, r->spec.labels[i].value);
+		const char *commit = aa_job_label(&r->spec, "commit");
+		card(o, "Labels", commit ? commit : r->spec.labels[0].value, d);
+	}
 	snprintf(v, sizeof v, "%d", r->method_count);
 	d[0] = '\0';
 	if (isfinite(r->wall_seconds))
@@ -659,7 +673,7 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
 	      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>aalab: ", o);
 	esc(o, title);
-	fprintf(o, "</title>\n<style>%s</style>\n</head>\n<body><main>\n<h1>", style);
+	fprintf(o, "</title>\n<style>%s</style>\n</head>\n<body><main>\n<h1>", aa_report_style);
 	esc(o, title);
 	fputs("</h1>\n<p class=\"sub\">aalab render-and-compare report", o);
 	if (*view.started_at) {

@@ -2,6 +2,8 @@
 #ifndef AA_RESULTS_H
 #define AA_RESULTS_H
 
+#include <stdio.h>
+
 #include <jansson.h>
 
 #include "../job.h"
@@ -35,5 +37,9 @@ int aa_results_write_file_atomic(const char *dir, const char *name, const char *
 				 struct aa_error *err);
 /* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
 int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+
+/* The report's style sheet and HTML escaping, shared by the report of a suite (suite_results.c). */
+extern const char aa_report_style[];
+void aa_report_esc(FILE *o, const char *s);
 
 #endif

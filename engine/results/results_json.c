@@ -415,6 +415,16 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 	put(&b, root, "started_at", str(r->started_at));
 	put(&b, root, "wall_seconds", num(r->wall_seconds));
 	put(&b, root, "job", aa_job_spec_to_json(&r->spec));
+	/* for build farms: what run this was, which suite, and a hash of the work that equals another run's
+	 * exactly when both rendered the same job */
+	json_t *labels = json_object();
+	for (int i = 0; i < r->spec.label_count && i < AA_MAX_LABELS; i++)
+		put(&b, labels, r->spec.labels[i].key, str(r->spec.labels[i].value));
+	put(&b, root, "labels", labels);
+	put(&b, root, "suite", str(r->spec.suite));
+	char hash[80];
+	aa_job_hash(&r->spec, hash, sizeof hash);
+	put(&b, root, "job_hash", str(hash));
 	put(&b, root, "scene", json_pack("{s:o, s:o, s:o}", "name", str(r->scene_name), "file", str(r->scene_file),
 					 "triangles", u64(r->scene_triangles)));
 	put(&b, root, "device", json_pack("{s:o, s:o, s:o}", "name", str(r->device_name), "driver",

@@ -38,11 +38,18 @@ try:
     jobdir = os.path.join(d.state, "jobs", a)
     left = [p for p in ("frames", "linear", "diff", "flip", "results.json") if os.path.exists(os.path.join(jobdir, p))]
     check(not left, "its partial output is removed (%s)" % left)
-    with open(os.path.join(jobdir, "job.json")) as f:
-        saved = json.load(f)
+    # status says failed as soon as the worker decides; job.json and the log's last line are written
+    # (and synced) just after it, so the files are read once they have caught up, for at most 10 s
+    deadline = time.time() + 10
+    while True:
+        with open(os.path.join(jobdir, "job.json")) as f:
+            saved = json.load(f)
+        with open(os.path.join(jobdir, "events.jsonl")) as f:
+            events = [json.loads(l) for l in f]
+        if (saved["state"] == "failed" and events and events[-1]["event"] == "job_failed") or time.time() > deadline:
+            break
+        time.sleep(0.05)
     check(saved["state"] == "failed" and saved["error"]["code"] == "io", "job.json says failed, io")
-    with open(os.path.join(jobdir, "events.jsonl")) as f:
-        events = [json.loads(l) for l in f]
     check(events and events[0]["event"] == "job_started" and events[-1]["event"] == "job_failed",
           "events.jsonl holds the run, ending in job_failed (%d events)" % len(events))
     b = c.request({"op": "submit", "job": SMALL_JOB})
@@ -65,7 +72,8 @@ try:
 
     # the disk fills up from outside during a job that keeps no frames: nothing of the job's own can be
     # removed to make room, so its failed state is written into the reserve
-    j = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=12, keep_frames=False)})["job"]
+    # long enough (seconds) that the status poll sees it running before it ends, on a quiet machine too
+    j = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=150, keep_frames=False)})["job"]
     wait_state(c, j, ["running"])
     filler = os.path.join(d.state, "filler")
     with open(filler, "wb", buffering=0) as f:

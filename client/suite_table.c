@@ -1,0 +1,60 @@
+/* The summary table of a suite's results across its cases, read from results.json so that local and
+ * remote runs print the same thing. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "client.h"
+
+static double number(json_t *o, const char *key)
+{
+	json_t *v = json_object_get(o, key);
+	return json_is_number(v) ? json_number_value(v) : NAN;
+}
+
+static double metric_mean(json_t *method, const char *name)
+{
+	return number(json_object_get(json_object_get(method, "metrics"), name), "mean");
+}
+
+void aa_print_suite_table(json_t *results, FILE *out)
+{
+	json_t *labels = json_object_get(results, "labels"), *v, *c, *m;
+	const char *key, *suite = json_string_value(json_object_get(results, "suite"));
+	size_t i, j;
+	fprintf(out, "suite %s, %zu cases", suite && *suite ? suite : "(unnamed)",
+		json_array_size(json_object_get(results, "cases")));
+	json_object_foreach(labels, key, v)
+		fprintf(out, ", %s=%s", key, json_string_value(v));
+	fprintf(out, ", %s\n\n", json_string_value(json_object_get(json_object_get(results, "device"), "name")) ?
+				    json_string_value(json_object_get(json_object_get(results, "device"), "name")) : "");
+	/* GPU ms: the median over every timed render, with the 10th-90th percentile range */
+	fprintf(out, "%-34s %-24s %12s %15s %8s %10s %8s %8s %8s\n", "case", "method", "GPU ms/frame", "p10-p90 ms",
+		"MB", "PSNR dB", "SSIM", "FLIP", "flicker");
+	json_array_foreach(json_object_get(results, "cases"), i, c) {
+		json_array_foreach(json_object_get(c, "methods"), j, m) {
+			json_t *gpu = json_object_get(m, "gpu_ms");
+			json_t *psnr = json_object_get(json_object_get(m, "metrics"), "psnr");
+			char psnr_text[32], spread[48];
+			if (json_is_number(json_object_get(psnr, "mean")))
+				snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(json_object_get(psnr, "mean")));
+			else
+				snprintf(psnr_text, sizeof psnr_text, "%s",
+					 json_is_true(json_object_get(psnr, "identical")) ? "identical" : "-");
+			snprintf(spread, sizeof spread, "%.2f-%.2f", number(gpu, "p10"), number(gpu, "p90"));
+			fprintf(out, "%-34s %-24s %12.2f %15s %8.2f %10s %8.4f %8.4f %8.3f\n",
+				j == 0 ? json_string_value(json_object_get(c, "id")) : "",
+				json_string_value(json_object_get(m, "label")), number(gpu, "median"), spread,
+				number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
+				metric_mean(m, "flip"), metric_mean(m, "flicker"));
+		}
+	}
+}
+
+void aa_print_results_any(json_t *results, FILE *out)
+{
+	if (json_object_get(results, "cases"))
+		aa_print_suite_table(results, out);
+	else
+		aa_print_results_table(results, out);
+}
