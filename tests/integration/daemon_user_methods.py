@@ -126,6 +126,37 @@ try:
     g = c.request({"op": "get", "job": r["job"], "file": "method-files.json"})
     check(g.get("ok") and json.loads(g["_payload"]) == example_files(), "the files are kept with the job")
 
+    # a suite runs in the worker process too (a user method runs nowhere else): every case, its events
+    # naming the case, its images in the case's folder; run again with the first as its baseline, the
+    # verdict is judged on the daemon's side when the process is done
+    suite = dict(SMALL, suite="um", scenes=["thin-wires"], sizes=["64x36", "48x27"], keep_frames=True,
+                 methods=["none", "user:file=m/edge_blur.json"])
+    del suite["scene"], suite["size"]
+    r = submit(c, suite, example_files())
+    check(r["ok"], "a suite with a user method is queued: %s" % r)
+    s1 = wait_state(c, r["job"], ["done", "failed"])
+    check(s1["state"] == "done", "and done: %s" % s1.get("error"))
+    res = json.loads(c.request({"op": "get", "job": s1["id"], "file": "results.json"})["_payload"])
+    cases = res.get("cases", [])
+    check([k["id"] for k in cases] == ["thin-wires/default/64x36", "thin-wires/default/48x27"] and
+          all(k["methods"][1]["name"] == "user" and k["methods"][1]["gpu_ms"]["n"] == 1 for k in cases),
+          "results.json has both cases, each with the user method timed: %s" % [k.get("id") for k in cases])
+    events, end = c.watch(s1["id"])
+    frames = [e for e in events if e["event"] == "method_frame" and e["method"] == "edge-blur"]
+    check([e.get("case") for e in frames] == ["thin-wires/default/64x36", "thin-wires/default/48x27"] and
+          all(e.get("image", "").startswith("cases/thin-wires_default_%dx%d/" % (e["width"], e["height"]))
+              for e in frames), "its frame events name their case and its image: %s" %
+          [(e.get("case"), e.get("image")) for e in frames])
+    if frames:
+        g = c.request({"op": "get", "job": s1["id"], "file": frames[-1]["image"]})
+        check(g.get("ok") and g["_payload"][:4] == b"\x89PNG", "a case's image is there")
+    r = submit(c, dict(suite, baseline=s1["id"]), example_files())
+    s2 = wait_state(c, r["job"], ["done", "failed"]) if r["ok"] else {}
+    v = s2.get("compare", {})
+    check(s2.get("state") == "done" and v.get("job") == s1["id"] and v.get("verdict") in ("held", "tripped"),
+          "run again with it as the baseline, the job has a verdict: %s" % v)
+    check(len(worker_pids(d)) == 1, "in the one worker process")
+
     # the daemon reads user methods from the files sent, never from its disk
     r = submit(c, dict(SMALL, methods=["user:file=%s/edge_blur.json" % EXAMPLES]))
     check(not r["ok"] and r["error"]["code"] == "not_found" and r["error"]["path"] == "job.methods[0]" and
