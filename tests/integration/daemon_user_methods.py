@@ -136,8 +136,8 @@ try:
     check(r["ok"], "a suite with a user method is queued: %s" % r)
     s1 = wait_state(c, r["job"], ["done", "failed"])
     check(s1["state"] == "done", "and done: %s" % s1.get("error"))
-    res = json.loads(c.request({"op": "get", "job": s1["id"], "file": "results.json"})["_payload"])
-    cases = res.get("cases", [])
+    g = c.request({"op": "get", "job": s1["id"], "file": "results.json"})
+    cases = json.loads(g["_payload"]).get("cases", []) if g.get("ok") else []
     check([k["id"] for k in cases] == ["thin-wires/default/64x36", "thin-wires/default/48x27"] and
           all(k["methods"][1]["name"] == "user" and k["methods"][1]["gpu_ms"]["n"] == 1 for k in cases),
           "results.json has both cases, each with the user method timed: %s" % [k.get("id") for k in cases])
