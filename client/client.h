@@ -58,6 +58,9 @@ json_t *aa_job_load_file(const char *cmd, const char *path);
 /* The job: argv[first] (a job file or suite name) if given, with the flags' fields over it (--label adds
  * to the file's labels); NULL after printing why. */
 json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *overrides);
+/* Prints "aalab CMD: path: message" to stderr, naming the field once: messages that already name it (a
+ * scene file's "file: path: what is wrong") are printed as they are. */
+void aa_print_error(const char *cmd, const struct aa_error *err);
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
  * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends

@@ -103,6 +103,11 @@ void aa_print_results_table(json_t *results, FILE *out)
 			json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
 			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")), alpha ? alpha : "-");
 	}
+	json_t *warnings = json_object_get(results, "warnings"), *w;
+	if (json_array_size(warnings))
+		fprintf(out, "\nwarnings (what the scene draws differently from its files):\n");
+	json_array_foreach(warnings, i, w)
+		fprintf(out, "  %s\n", json_string_value(w));
 }
 
 int cmd_get(int argc, char **argv)

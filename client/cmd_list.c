@@ -15,34 +15,92 @@ static bool want_json(int argc, char **argv)
 	return false;
 }
 
+/* One scene loaded whole: what it draws, the animations of its mesh files and what loading dropped. */
+static int describe_scene(const char *name, bool json)
+{
+	char file[1024];
+	struct aa_error err = {0};
+	struct aa_scene *s = NULL;
+	if (aa_scene_resolve(name, file, sizeof file, &err) || aa_scene_load(file, &s, &err)) {
+		aa_print_error("scenes", &err);
+		return err.code == AA_ERR_INVALID || err.code == AA_ERR_NOT_FOUND || err.code == AA_ERR_LIMIT
+			       ? AA_EXIT_USAGE : AA_EXIT_FAILED;
+	}
+	json_t *o = json_pack("{ss ss ss sI si si si}", "name", s->name, "file", file, "description", s->description,
+			      "triangles", (json_int_t)aa_scene_triangle_count(s), "objects", s->model_count,
+			      "materials", s->material_count, "textures", s->texture_count);
+	json_t *paths = json_array(), *clips = json_array(), *warnings = json_array();
+	for (int p = 0; p < s->path_count; p++)
+		json_array_append_new(paths, json_string(s->paths[p].name));
+	for (int r = 0; r < s->rig_count; r++)
+		for (int c = 0; c < s->rigs[r].clip_count; c++)
+			json_array_append_new(clips, json_pack("{ss ss sf}", "file", s->rigs[r].source, "clip",
+							       s->rigs[r].clips[c].name, "seconds", s->rigs[r].clips[c].duration));
+	for (int w = 0; w < s->warning_count; w++)
+		json_array_append_new(warnings, json_string(s->warnings[w]));
+	json_object_set_new(o, "paths", paths);
+	json_object_set_new(o, "animations", clips);
+	json_object_set_new(o, "warnings", warnings);
+	if (json) {
+		json_dumpf(o, stdout, JSON_INDENT(2));
+		fputc('\n', stdout);
+	} else {
+		printf("%s (%s)\n", s->name, file);
+		if (s->description[0]) /* a scene without one gets no blank line */
+			printf("  %s\n", s->description);
+		printf("  %llu triangles, %d objects, %d materials, %d textures\n  paths: default, static",
+		       (unsigned long long)aa_scene_triangle_count(s), s->model_count, s->material_count, s->texture_count);
+		for (int p = 0; p < s->path_count; p++)
+			printf(", %s", s->paths[p].name);
+		putchar('\n');
+		for (int r = 0; r < s->rig_count; r++)
+			for (int c = 0; c < s->rigs[r].clip_count; c++)
+				printf("  animation '%s' of %s: %.3f s\n", s->rigs[r].clips[c].name, s->rigs[r].source,
+				       s->rigs[r].clips[c].duration);
+		for (int w = 0; w < s->warning_count; w++)
+			printf("  warning: %s\n", s->warnings[w]);
+		if (s->warnings_dropped)
+			printf("  ... and %d more warnings\n", s->warnings_dropped);
+	}
+	json_decref(o);
+	aa_scene_free(s);
+	return AA_EXIT_OK;
+}
+
+/* Lists the scenes from their JSON alone: no mesh or texture is loaded (a folder of large assets would
+ * take seconds and hundreds of MB), so triangle counts are left to `aalab scenes NAME`. */
 int cmd_scenes(int argc, char **argv)
 {
+	bool json = want_json(argc, argv);
+	for (int i = 1; i < argc; i++)
+		if (argv[i][0] != '-')
+			return describe_scene(argv[i], json);
 	char **names;
 	int count;
 	if (aa_scene_list(&names, &count)) {
 		fprintf(stderr, "aalab scenes: cannot list scenes\n");
 		return AA_EXIT_FAILED;
 	}
-	bool json = want_json(argc, argv);
 	json_t *arr = json_array();
 	for (int i = 0; i < count; i++) {
 		char file[1024];
 		struct aa_error err = {0};
-		struct aa_scene *s = NULL;
+		struct aa_scene_summary sum;
 		json_t *o = json_pack("{ss}", "name", names[i]);
-		if (aa_scene_resolve(names[i], file, sizeof file, &err) == 0 && aa_scene_load(file, &s, &err) == 0) {
+		if (aa_scene_resolve(names[i], file, sizeof file, &err) == 0 && aa_scene_summarize(file, &sum, &err) == 0) {
 			json_t *paths = json_array();
-			for (int p = 0; p < s->path_count; p++)
-				json_array_append_new(paths, json_string(s->paths[p].name));
+			for (int p = 0; p < sum.path_count; p++)
+				json_array_append_new(paths, json_string(sum.paths[p]));
 			json_object_set_new(o, "file", json_string(file));
-			json_object_set_new(o, "description", json_string(s->description));
-			json_object_set_new(o, "triangles", json_integer((json_int_t)aa_scene_triangle_count(s)));
+			json_object_set_new(o, "description", json_string(sum.description));
+			json_object_set_new(o, "objects", json_integer(sum.object_count));
 			json_object_set_new(o, "paths", paths);
-			if (!json)
-				printf("%-16s %7llu triangles  paths: default, static%s%s\n%16s %s\n", names[i],
-				       (unsigned long long)aa_scene_triangle_count(s), s->path_count ? ", " : "",
-				       s->path_count ? s->paths[0].name : "", "", s->description);
-			aa_scene_free(s);
+			if (!json) {
+				printf("%-16s %4d objects  paths: default, static%s%s\n", names[i], sum.object_count,
+				       sum.path_count ? ", " : "", sum.path_count ? sum.paths[0] : "");
+				if (sum.description[0])
+					printf("%16s %s\n", "", sum.description);
+			}
 		} else {
 			json_object_set_new(o, "error", json_string(err.message));
 			if (!json)

@@ -143,7 +143,7 @@ int cmd_run(int argc, char **argv)
 	/* user methods read their method and shader files from here (docs/user-methods.md) */
 	int rc = aa_job_spec_from_json_files(job, &aa_file_source_disk, &spec, &err);
 	if (rc) {
-		fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
+		aa_print_error("run", &err);
 		json_decref(job);
 		goto out;
 	}
@@ -238,7 +238,7 @@ int cmd_run(int argc, char **argv)
 		if (ro.failed_writes)
 			fprintf(stderr, "aalab run: writing images failed: %s\n", ro.write_err.message);
 		else
-			fprintf(stderr, "aalab run: %s%s%s\n", err.path, err.path[0] ? ": " : "", err.message);
+			aa_print_error("run", &err);
 		status = err.code == AA_ERR_INVALID || err.code == AA_ERR_NOT_FOUND || err.code == AA_ERR_LIMIT
 				 ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;

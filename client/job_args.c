@@ -113,6 +113,35 @@ json_t *aa_job_load_file(const char *cmd, const char *path)
 	return job;
 }
 
+void aa_print_error(const char *cmd, const struct aa_error *err)
+{
+	/* named already: "path: ..." or "...: path: ..." (a scene file's "file: path: what") */
+	char inside[300];
+	size_t len = strlen(err->path);
+	snprintf(inside, sizeof inside, ": %s:", err->path);
+	bool named = !len || (strncmp(err->message, err->path, len) == 0 && err->message[len] == ':') ||
+		     strstr(err->message, inside);
+	fprintf(stderr, "aalab %s: %s%s%s\n", cmd, named ? "" : err->path, named ? "" : ": ", err->message);
+}
+
+/* A job file's scene path is relative to the job file, not to where aalab runs: the file is then usable
+ * from anywhere (flags given on the command line stay relative to the working directory). */
+static void rebase_scene_path(json_t *job, const char *job_file)
+{
+	const json_t *scene = json_object_get(job, "scene");
+	const char *slash = strrchr(job_file, '/');
+	if (!json_is_string(scene) || !slash)
+		return;
+	const char *path = json_string_value(scene);
+	size_t len = strlen(path);
+	if (path[0] == '/' || len < 5 || strcmp(path + len - 5, ".json") != 0)
+		return; /* a scene name, or an absolute path */
+	char joined[2048];
+	int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - job_file), job_file, path);
+	if (n > 0 && (size_t)n < sizeof joined)
+		json_object_set_new(job, "scene", json_string(joined));
+}
+
 json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *overrides)
 {
 	json_t *job;
@@ -125,6 +154,7 @@ json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *
 		job = aa_job_load_file(cmd, argv[first]);
 		if (!job)
 			return NULL;
+		rebase_scene_path(job, argv[first]);
 	} else {
 		job = json_object();
 	}

@@ -67,6 +67,13 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 				aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
 		fputs("; reference per-sample (docs/methods.md)\n", out);
 	}
+	if (r->warning_count > 0) {
+		fprintf(out, "\nwarnings (what the scene draws differently from its files):\n");
+		for (int i = 0; i < r->warning_count && i < AA_MAX_WARNINGS; i++)
+			fprintf(out, "  %s\n", r->warnings[i]);
+		if (r->warnings_dropped > 0)
+			fprintf(out, "  ... and %d more\n", r->warnings_dropped);
+	}
 }
 
 static int progress_width;

@@ -43,15 +43,18 @@ static json_t *started_event(const struct aa_job_result *r)
 	for (int i = 0; i < r->plan_count; i++)
 		json_array_append_new(plan, json_pack("{ss ss sb}", "pass", r->plan[i].pass, "reason",
 						      r->plan[i].reason, "ran", r->plan[i].ran));
-	json_t *alpha_rules = json_array();
+	json_t *alpha_rules = json_array(), *warnings = json_array();
+	for (int i = 0; i < r->warning_count && i < AA_MAX_WARNINGS; i++)
+		json_array_append_new(warnings, json_string(r->warnings[i]));
 	for (int i = 0; i < r->method_count; i++) {
 		json_array_append_new(methods, json_string(r->methods[i].label));
 		json_array_append_new(alpha_rules, json_string(aa_alpha_rule_name(
 			aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params))));
 	}
-	return json_pack("{ss ss ss so so so si si si si}", "event", "job_started", "scene", r->scene_name, "device",
-			 r->device_name, "plan", plan, "methods", methods, "alpha_rules", alpha_rules, "frames",
-			 r->spec.frames, "width", r->spec.width, "height", r->spec.height, "repeat", r->spec.timing_repeat);
+	return json_pack("{ss ss ss so so so so si si si si}", "event", "job_started", "scene", r->scene_name, "device",
+			 r->device_name, "plan", plan, "methods", methods, "alpha_rules", alpha_rules, "warnings", warnings,
+			 "frames", r->spec.frames, "width", r->spec.width, "height", r->spec.height, "repeat",
+			 r->spec.timing_repeat);
 }
 
 /* A suite's events name their case; its images live in the case's folder (cases/NAME/...). */

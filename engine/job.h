@@ -16,6 +16,7 @@
 #define AA_MAX_METHODS 16
 #define AA_MAX_PASSES 16
 #define AA_MAX_MEMORY_ITEMS 16
+#define AA_MAX_WARNINGS 32         /* as AA_SCENE_MAX_WARNINGS */
 #define AA_LABEL_MAX 128
 
 struct aa_method_spec {
@@ -191,6 +192,9 @@ struct aa_job_result {
 	double timestamp_period_ns;
 	int plan_count;
 	struct aa_plan_entry plan[AA_MAX_PASSES];
+	int warning_count;         /* what loading the scene dropped or approximated, once each */
+	int warnings_dropped;      /* more than AA_MAX_WARNINGS: counted, not kept */
+	char warnings[AA_MAX_WARNINGS][256];
 	struct aa_reference_result reference;
 	int method_count;
 	struct aa_method_result methods[AA_MAX_METHODS];

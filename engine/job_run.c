@@ -159,6 +159,10 @@ static int setup(struct job_state *js, struct aa_error *err)
 	res->timestamp_period_ns = gpu->timestamp_period_ns;
 	res->plan_count = plan.entry_count;
 	memcpy(res->plan, plan.entries, sizeof plan.entries);
+	_Static_assert(AA_MAX_WARNINGS == AA_SCENE_MAX_WARNINGS, "the scene's warnings fit the result");
+	res->warning_count = js->scene->warning_count;
+	res->warnings_dropped = js->scene->warnings_dropped;
+	memcpy(res->warnings, js->scene->warnings, sizeof res->warnings);
 	res->reference.samples = spec->reference_samples;
 	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
 	res->reference.memory_bytes = js->reference.memory_bytes;

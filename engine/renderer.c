@@ -35,7 +35,7 @@ int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, in
 static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 {
 	int size = r->plan.shadow_map ? AA_SHADOW_MAP_SIZE : 1;
-	if (aa_gpu_image_create(r->gpu, &r->shadow_map, size, size, AA_DEPTH_FORMAT,
+	if (aa_gpu_image_create(r->gpu, &r->shadow_map, size, size, AA_SHADOW_FORMAT,
 				VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
 				VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, 1, err))
 		return -1;
@@ -52,7 +52,7 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 		return -1;
 	if (!r->plan.shadow_map)
 		return 0;
-	struct aa_gpu_pass_desc pd = {.depth_format = AA_DEPTH_FORMAT, .depth_readable = true, .samples = 1};
+	struct aa_gpu_pass_desc pd = {.depth_format = AA_SHADOW_FORMAT, .depth_readable = true, .samples = 1};
 	struct aa_gpu_image *att[1] = {&r->shadow_map};
 	return aa_gpu_render_pass_create(r->gpu, &pd, &r->shadow_pass, err) ||
 	       aa_gpu_framebuffer_create(r->gpu, r->shadow_pass, att, 1, &r->shadow_framebuffer, err);
@@ -61,10 +61,15 @@ static int create_shadow_map(struct aa_renderer *r, struct aa_error *err)
 static int create_pipelines(struct aa_renderer *r, struct aa_error *err)
 {
 	struct aa_gpu *g = r->gpu;
-	VkDescriptorType types[5] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
-				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-				     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-	if (aa_gpu_layout_create(g, types, NULL, 5, sizeof(struct aa_draw_push), &r->scene_layout, err))
+	/* 0 frame, 1 material, 2 base texture, 3 shadow map, 4 previous models, 5-8 the file materials' maps
+	 * (emissive, normal, metal-rough, occlusion), 9 previous skinned positions */
+	VkDescriptorType types[10] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+				      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+				      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+				      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+	if (aa_gpu_layout_create(g, types, NULL, 10, sizeof(struct aa_draw_push), &r->scene_layout, err))
 		return -1;
 	if (r->plan.shadow_map) {
 		struct aa_gpu_graphics_desc sd = {
@@ -109,7 +114,7 @@ static bool desc_equal(const struct aa_scene_target_desc *a, const struct aa_sce
  * alpha test, the G-buffer's geometry_at_sample, the texture LOD bias, then shading_point.glsl's mode,
  * pattern size, alpha to coverage and the pattern's positions, then shading.glsl's material class and
  * the scene's lights (what each pipeline compiles in). IDs a shader lacks are ignored. */
-#define SCENE_CONSTANT_COUNT 28
+#define SCENE_CONSTANT_COUNT 37
 struct scene_constants {
 	VkBool32 alpha_test, geometry_at_sample;
 	float lod_bias;
@@ -121,6 +126,10 @@ struct scene_constants {
 	int32_t light_count;        /* 25: the frame uniforms' lights */
 	uint32_t point_lights;
 	int32_t shadow_light;
+	VkBool32 metal_rough, vertex_color, normal_map; /* 28: file materials (struct aa_material_class) */
+	int32_t emissive;
+	VkBool32 metal_rough_map, occlusion_map, uv_transform, blend;
+	VkBool32 skinned;           /* 36: gbuffer.vert, velocity of skinned parts */
 };
 _Static_assert(sizeof(struct scene_constants) == SCENE_CONSTANT_COUNT * 4, "one 4-byte value per constant");
 
@@ -200,39 +209,78 @@ static int scene_variant(struct aa_renderer *r, const struct aa_scene_target_des
 		constants.material_pattern = mc->pattern;
 		constants.unlit = mc->unlit;
 		constants.specular = mc->specular;
+		constants.metal_rough = mc->metal_rough;
+		constants.vertex_color = mc->vertex_color;
+		constants.normal_map = mc->normal_map;
+		constants.emissive = (int32_t)mc->emissive;
+		constants.metal_rough_map = mc->metal_rough_map;
+		constants.occlusion_map = mc->occlusion_map;
+		constants.uv_transform = mc->uv_transform;
+		constants.blend = mc->blend;
+		constants.skinned = mc->skinned;
+		struct aa_gpu_graphics_desc gc = g;
+		gc.cull = mc->single_sided ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+		gc.vert_specialization = mc->skinned ? &spec : NULL;
+		if (mc->blend) { /* over what is drawn, into the colour only, without hiding what lies behind */
+			gc.blend = AA_BLEND_ALPHA;
+			gc.depth_write = false;
+		}
 		constants.alpha_test = VK_FALSE;
-		if (mc->opaque_used && aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->opaque[c], err))
+		if (mc->opaque_used && aa_gpu_graphics_pipeline_create(r->gpu, &gc, &v->opaque[c], err))
 			return -1;
 		constants.alpha_test = VK_TRUE;
-		if (mc->cutout_used && aa_gpu_graphics_pipeline_create(r->gpu, &g, &v->cutout[c], err))
+		if (mc->cutout_used && aa_gpu_graphics_pipeline_create(r->gpu, &gc, &v->cutout[c], err))
 			return -1;
 	}
 	return r->variant_count++;
 }
 
+/* One set per material: the frame, the materials (at the material's dynamic offset), its textures (white
+ * where it has none: never sampled, its class does not compile the fetch in), the shadow map and the
+ * previous frame's models and skinned positions. */
 static int create_descriptors(struct aa_renderer *r, struct aa_error *err)
 {
-	int n = r->scene->texture_count + 1;
+	const struct aa_scene *s = r->scene;
+	int n = s->material_count > 0 ? s->material_count : 1;
 	if (aa_gpu_descriptor_pool_create(r->gpu, (uint32_t)n, &r->pool, err) ||
 	    aa_gpu_descriptor_pool_create(r->gpu, 256, &r->pass_pool, err))
 		return -1;
-	r->texture_sets = calloc((size_t)n, sizeof *r->texture_sets);
-	if (!r->texture_sets)
+	r->material_sets = calloc((size_t)n, sizeof *r->material_sets);
+	if (!r->material_sets)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	for (int i = 0; i < n; i++) {
-		if (aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &r->scene_layout, &r->texture_sets[i], err))
+		if (aa_gpu_descriptor_set_alloc(r->gpu, r->pool, &r->scene_layout, &r->material_sets[i], err))
 			return -1;
-		VkDescriptorSet set = r->texture_sets[i];
+		VkDescriptorSet set = r->material_sets[i];
+		const struct aa_material *m = i < s->material_count ? &s->materials[i] : NULL;
 		aa_gpu_write_buffer(r->gpu, set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &r->frame_ubo);
 		aa_gpu_write_buffer_range(r->gpu, set, 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, &r->upload->materials,
 					  sizeof(struct aa_material_gpu));
-		aa_gpu_write_image(r->gpu, set, 2, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-				   r->gpu->sampler_linear, &r->upload->textures[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+		static const uint32_t map_binding[AA_MAP_COUNT] = {2, 5, 6, 7, 8};
+		for (int k = 0; k < AA_MAP_COUNT; k++) {
+			int t = m ? (k == AA_MAP_BASE ? (m->pattern == AA_PATTERN_TEXTURE ? m->texture_index : -1) : m->maps[k])
+				  : -1;
+			if (t < 0 || t >= s->texture_count)
+				t = s->texture_count; /* the white stand-in */
+			aa_gpu_write_image(r->gpu, set, map_binding[k], 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+					   r->gpu->sampler_linear, &r->upload->textures[t], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+		}
 		aa_gpu_write_image(r->gpu, set, 3, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
 				   r->gpu->sampler_shadow, &r->shadow_map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 		aa_gpu_write_buffer(r->gpu, set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->prev_models);
+		aa_gpu_write_buffer(r->gpu, set, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->skinned_previous);
 	}
 	return 0;
+}
+
+/* Whether two classes compile the same pipelines (what they are used for aside). */
+static bool class_equal(const struct aa_material_class *a, const struct aa_material_class *b)
+{
+	return a->pattern == b->pattern && a->unlit == b->unlit && a->specular == b->specular &&
+	       a->metal_rough == b->metal_rough && a->vertex_color == b->vertex_color && a->normal_map == b->normal_map &&
+	       a->metal_rough_map == b->metal_rough_map && a->occlusion_map == b->occlusion_map &&
+	       a->uv_transform == b->uv_transform && a->emissive == b->emissive && a->blend == b->blend &&
+	       a->single_sided == b->single_sided && a->skinned == b->skinned;
 }
 
 /* The scene's lights as the frame uniforms hold them, and the material classes its objects draw with. */
@@ -254,25 +302,70 @@ static int classify_scene(struct aa_renderer *r, struct aa_error *err)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	for (int o = 0; o < s->object_count; o++) {
 		const struct aa_material *m = &s->materials[s->objects[o].material_index];
-		struct aa_material_class key = {.pattern = (uint32_t)m->pattern, .unlit = m->unlit,
-						.specular = m->specular > 0.0f};
+		struct aa_material_class key = {0};
+		key.pattern = (uint32_t)m->pattern;
+		key.unlit = m->unlit;
+		key.specular = m->specular > 0.0f;
+		key.metal_rough = m->model == AA_SHADING_METAL_ROUGH;
+		key.vertex_color = m->vertex_color;
+		key.normal_map = m->maps[AA_MAP_NORMAL] >= 0 && !m->unlit;
+		key.emissive = m->unlit ? 0 : m->maps[AA_MAP_EMISSIVE] >= 0 ? 2
+			       : (m->emissive[0] > 0 || m->emissive[1] > 0 || m->emissive[2] > 0) ? 1 : 0;
+		key.metal_rough_map = key.metal_rough && m->maps[AA_MAP_METAL_ROUGH] >= 0;
+		key.occlusion_map = m->maps[AA_MAP_OCCLUSION] >= 0 && !m->unlit;
+		key.uv_transform = m->uv_transformed;
+		key.blend = m->blend;
+		key.single_sided = m->single_sided;
+		key.skinned = s->meshes[s->objects[o].mesh_index].skin != NULL;
 		int c = 0;
-		while (c < r->material_class_count &&
-		       !(r->material_classes[c].pattern == key.pattern && r->material_classes[c].unlit == key.unlit &&
-			 r->material_classes[c].specular == key.specular))
+		while (c < r->material_class_count && !class_equal(&r->material_classes[c], &key))
 			c++;
 		if (c == r->material_class_count) {
-			if (c == AA_MAX_MATERIAL_CLASSES) /* 4 patterns x unlit x specular: cannot happen */
-				return aa_error_set(err, AA_ERR_INTERNAL, "", "too many material classes");
+			if (c == AA_MAX_MATERIAL_CLASSES)
+				return aa_error_set(err, AA_ERR_LIMIT, "", "the scene's materials need more than %d different "
+						    "shader variants (pattern, unlit, specular, maps, blend, sides, skin)",
+						    AA_MAX_MATERIAL_CLASSES);
 			r->material_classes[r->material_class_count++] = key;
 		}
-		if (m->alpha_cutout && r->plan.alpha_test)
+		if (m->alpha_cutout && r->plan.alpha_test && !m->blend)
 			r->material_classes[c].cutout_used = true;
 		else
 			r->material_classes[c].opaque_used = true;
 		r->object_class[o] = (uint8_t)c;
 	}
 	return 0;
+}
+
+/* Buffers for the parts posed on the CPU: each skinned object gets its own run of vertices (objects sharing
+ * a mesh may be posed differently). A scene without skins gets a 16-byte stand-in for the descriptor. */
+static int create_skinning(struct aa_renderer *r, struct aa_error *err)
+{
+	const struct aa_scene *s = r->scene;
+	size_t total = 0, largest = 1;
+	int joints = 1;
+	if (!(r->skin_offset = calloc((size_t)(s->object_count ? s->object_count : 1), sizeof *r->skin_offset)))
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	for (int o = 0; o < s->object_count; o++) {
+		const struct aa_mesh *m = &s->meshes[s->objects[o].mesh_index];
+		r->skin_offset[o] = -1;
+		if (!m->skin)
+			continue;
+		r->skin_offset[o] = (int32_t)total;
+		total += m->vertex_count;
+		largest = m->vertex_count > largest ? m->vertex_count : largest;
+		if (m->rig >= 0 && s->rigs[m->rig].joint_count > joints)
+			joints = s->rigs[m->rig].joint_count;
+	}
+	if (total > INT32_MAX / 2)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "too many skinned vertices");
+	r->joint_matrices = calloc((size_t)joints, sizeof *r->joint_matrices);
+	r->skin_scratch = calloc(largest, sizeof *r->skin_scratch);
+	if (!r->joint_matrices || !r->skin_scratch)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+	return aa_gpu_buffer_create(r->gpu, &r->skinned_vertices, (total ? total : 1) * sizeof(struct aa_vertex),
+				    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true, err) ||
+	       aa_gpu_buffer_create(r->gpu, &r->skinned_previous, (total ? total : 1) * 4 * sizeof(float),
+				    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, err);
 }
 
 int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_scene_upload *upload,
@@ -288,15 +381,19 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 	r->plan = *plan;
 	r->width = width;
 	r->height = height;
-	r->models = calloc((size_t)(scene->object_count ? scene->object_count : 1), sizeof *r->models);
-	if (!r->models || aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
+	size_t objects = (size_t)(scene->object_count ? scene->object_count : 1);
+	int models = scene->model_count > 0 ? scene->model_count : scene->object_count;
+	r->models = calloc(objects, sizeof *r->models);
+	r->bounds = calloc(objects, sizeof *r->bounds);
+	r->blend_order = calloc(objects, sizeof *r->blend_order);
+	if (!r->models || !r->bounds || !r->blend_order ||
+	    aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
 				 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, err) ||
-	    aa_gpu_buffer_create(gpu, &r->prev_models,
-				 sizeof(mat4) * (VkDeviceSize)(scene->object_count ? scene->object_count : 1),
+	    aa_gpu_buffer_create(gpu, &r->prev_models, sizeof(mat4) * (VkDeviceSize)(models > 0 ? models : 1),
 				 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, err) ||
-	    classify_scene(r, err) || create_shadow_map(r, err) || create_pipelines(r, err) ||
-	    create_descriptors(r, err)) {
-		if (!r->models)
+	    create_skinning(r, err) || classify_scene(r, err) || create_shadow_map(r, err) ||
+	    create_pipelines(r, err) || create_descriptors(r, err)) {
+		if (!r->models || !r->bounds || !r->blend_order)
 			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		aa_renderer_destroy(r);
 		return -1;
@@ -335,8 +432,15 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	aa_gpu_image_destroy(g, &r->shadow_map);
 	aa_gpu_buffer_destroy(g, &r->frame_ubo);
 	aa_gpu_buffer_destroy(g, &r->prev_models);
-	free(r->texture_sets);
+	aa_gpu_buffer_destroy(g, &r->skinned_vertices);
+	aa_gpu_buffer_destroy(g, &r->skinned_previous);
+	free(r->material_sets);
 	free(r->models);
+	free(r->bounds);
+	free(r->blend_order);
+	free(r->skin_offset);
+	free(r->joint_matrices);
+	free(r->skin_scratch);
 	free(r->object_class);
 	free(r);
 }
@@ -358,23 +462,6 @@ void aa_renderer_reuse(struct aa_renderer *r, const struct aa_scene *scene, cons
 	vkResetDescriptorPool(r->gpu->device, r->pass_pool, 0);
 }
 
-/* Bounds of everything in the scene at this frame, for fitting the shadow map. */
-static void scene_bounds(struct aa_renderer *r, vec3 *center, float *radius)
-{
-	vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
-	for (int o = 0; o < r->scene->object_count; o++) {
-		const struct aa_mesh *m = &r->scene->meshes[r->scene->objects[o].mesh_index];
-		for (uint32_t i = 0; i < m->vertex_count; i++) {
-			const float *p = m->vertices[i].position;
-			vec3 w = mat4_transform_point(r->models[o], v3(p[0], p[1], p[2]));
-			lo = v3(fminf(lo.x, w.x), fminf(lo.y, w.y), fminf(lo.z, w.z));
-			hi = v3(fmaxf(hi.x, w.x), fmaxf(hi.y, w.y), fmaxf(hi.z, w.z));
-		}
-	}
-	*center = v3_scale(v3_add(lo, hi), 0.5f);
-	*radius = fmaxf(v3_length(v3_sub(hi, lo)) * 0.5f, 1e-3f);
-}
-
 static mat4 camera_projection(const struct aa_camera *c, int width, int height)
 {
 	float aspect = (float)width / (float)height;
@@ -382,6 +469,103 @@ static mat4 camera_projection(const struct aa_camera *c, int width, int height)
 		return mat4_ortho_reversed_z(c->ortho_height * aspect, c->ortho_height, c->near_plane, c->far_plane);
 	return mat4_perspective_reversed_z(c->fov_y_degrees * (float)M_PI / 180.0f, aspect, c->near_plane,
 					   c->far_plane);
+}
+
+/* Poses the skinned parts for time t into this frame's vertices and, for prev_t, into the previous
+ * positions the G-buffer reads for velocity (no previous frame: the same positions, no motion). Each
+ * object's world box comes from its posed vertices. */
+static void pose_skinned(struct aa_renderer *r, double t, bool has_prev, double prev_t)
+{
+	const struct aa_scene *s = r->scene;
+	struct aa_vertex *current = r->skinned_vertices.mapped;
+	float *previous = r->skinned_previous.mapped;
+	for (int o = 0; o < s->object_count; o++) {
+		if (r->skin_offset[o] < 0)
+			continue;
+		const struct aa_object *obj = &s->objects[o];
+		const struct aa_mesh *m = &s->meshes[obj->mesh_index];
+		const struct aa_rig *rig = &s->rigs[m->rig];
+		struct aa_vertex *out = current + r->skin_offset[o];
+		aa_rig_pose(rig, &obj->pose, t, r->joint_matrices);
+		aa_mesh_skin(m, r->joint_matrices, out);
+		float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+		for (uint32_t v = 0; v < m->vertex_count; v++)
+			for (int k = 0; k < 3; k++)
+				lo[k] = fminf(lo[k], out[v].position[k]), hi[k] = fmaxf(hi[k], out[v].position[k]);
+		if (m->vertex_count)
+			r->bounds[o] = aa_box_transform(r->models[o], lo, hi);
+		const struct aa_vertex *before = out;
+		if (has_prev) {
+			aa_rig_pose(rig, &obj->pose, prev_t, r->joint_matrices);
+			aa_mesh_skin(m, r->joint_matrices, r->skin_scratch);
+			before = r->skin_scratch;
+		}
+		for (uint32_t v = 0; v < m->vertex_count; v++) {
+			float *p = previous + 4 * ((size_t)r->skin_offset[o] + v);
+			p[0] = before[v].position[0], p[1] = before[v].position[1], p[2] = before[v].position[2], p[3] = 1.0f;
+		}
+	}
+}
+
+/* The blended objects this frame, farthest from the camera first (drawn over what lies behind them). */
+static int compare_depth(const void *a, const void *b, void *user)
+{
+	const float *depth = user;
+	float da = depth[*(const int *)a], db = depth[*(const int *)b];
+	return da > db ? -1 : da < db ? 1 : *(const int *)a - *(const int *)b;
+}
+
+static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
+{
+	const struct aa_scene *s = r->scene;
+	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
+	float *depth = malloc((size_t)(s->object_count ? s->object_count : 1) * sizeof *depth);
+	r->blend_count = 0;
+	for (int o = 0; o < s->object_count; o++) {
+		if (!s->materials[s->objects[o].material_index].blend)
+			continue;
+		vec3 c = v3_scale(v3_add(r->bounds[o].min, r->bounds[o].max), 0.5f);
+		if (depth)
+			depth[o] = v3_dot(v3_sub(c, camera->position), forward);
+		r->blend_order[r->blend_count++] = o;
+	}
+	if (depth)
+		qsort_r(r->blend_order, (size_t)r->blend_count, sizeof *r->blend_order, compare_depth, depth);
+	free(depth);
+}
+
+/* The shadow cascades for this camera (shadow_fit.c) into the frame uniforms. */
+static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, int light, struct aa_frame_uniforms *u)
+{
+	const struct aa_scene *s = r->scene;
+	const float *d = s->lights[light].direction;
+	struct aa_shadow_fit_input in = {
+		.camera = *camera, .aspect = (float)r->width / (float)r->height,
+		.light_direction = v3(d[0], d[1], d[2]), .boxes = r->bounds, .box_count = s->object_count,
+		.tile_size = AA_SHADOW_TILE_SIZE,
+	};
+	aa_shadow_fit(&in, &r->shadow_fit);
+	const struct aa_shadow_fit *f = &r->shadow_fit;
+	memcpy(u->shadow_light_view, f->light_view.m, sizeof u->shadow_light_view);
+	for (int i = 0; i < AA_SHADOW_CASCADES; i++) {
+		const struct aa_shadow_cascade *c = &f->cascades[i];
+		for (int k = 0; k < 3; k++) {
+			u->shadow_cascade_scale[i][k] = c->scale[k];
+			u->shadow_cascade_offset[i][k] = c->offset[k];
+		}
+		u->shadow_cascade_scale[i][3] = 0.5f / AA_SHADOW_TILE_SIZE;
+		u->shadow_cascade_offset[i][3] = c->texel * c->scale[2];
+		if (i + 1 < AA_SHADOW_CASCADES) /* beyond the cascades in use: never reached */
+			u->shadow_splits[i] = isfinite(f->splits[i + 1]) ? f->splits[i + 1] : 3.0e38f;
+	}
+	u->shadow_splits[3] = isfinite(f->splits[AA_SHADOW_CASCADES]) ? f->splits[AA_SHADOW_CASCADES] : 3.0e38f;
+	/* the first cascade as one matrix, for anything that reads the old single map's field */
+	const struct aa_shadow_cascade *c0 = &f->cascades[0];
+	mat4 fit = mat4_identity();
+	fit.m[0] = c0->scale[0], fit.m[5] = c0->scale[1], fit.m[10] = c0->scale[2];
+	fit.m[12] = c0->offset[0], fit.m[13] = c0->offset[1], fit.m[14] = c0->offset[2];
+	r->shadow_view_proj = mat4_mul(fit, f->light_view);
+	memcpy(u->shadow_view_proj, r->shadow_view_proj.m, sizeof u->shadow_view_proj);
 }
 
 void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
@@ -399,11 +583,16 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	if (prev_camera)
 		ctx->prev_view_proj = mat4_mul(camera_projection(prev_camera, r->width, r->height),
 					       mat4_look_at(prev_camera->position, prev_camera->target, prev_camera->up));
-	mat4 *prev = r->prev_models.mapped;
+	mat4 *prev = r->prev_models.mapped; /* by model_id: every part of an object moves as the object */
 	for (int o = 0; o < s->object_count; o++) {
-		r->models[o] = aa_object_model_matrix(&s->objects[o], t);
-		prev[o] = prev_camera ? aa_object_model_matrix(&s->objects[o], prev_t) : r->models[o];
+		const struct aa_object *obj = &s->objects[o];
+		const struct aa_mesh *m = &s->meshes[obj->mesh_index];
+		r->models[o] = aa_object_model_matrix(obj, t);
+		prev[obj->model_id - 1] = prev_camera ? aa_object_model_matrix(obj, prev_t) : r->models[o];
+		r->bounds[o] = aa_box_transform(r->models[o], m->bounds_min, m->bounds_max);
 	}
+	pose_skinned(r, t, prev_camera != NULL, prev_t);
+	sort_blended(r, camera);
 
 	struct aa_frame_uniforms *u = &r->uniforms;
 	memset(u, 0, sizeof *u);
@@ -415,6 +604,8 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	u->camera_position[0] = camera->position.x;
 	u->camera_position[1] = camera->position.y;
 	u->camera_position[2] = camera->position.z;
+	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
+	u->camera_forward[0] = forward.x, u->camera_forward[1] = forward.y, u->camera_forward[2] = forward.z;
 	memcpy(u->ambient, s->ambient, 3 * sizeof(float));
 	u->frame_size[0] = (float)r->width;
 	u->frame_size[1] = (float)r->height;
@@ -437,18 +628,8 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	}
 	u->counts[1] = shadow_light >= 0;
 	u->counts[2] = r->inject_nonfinite;
-	if (shadow_light >= 0) {
-		vec3 c;
-		float radius;
-		scene_bounds(r, &c, &radius);
-		const float *d = s->lights[shadow_light].direction;
-		vec3 dir = v3_normalize(v3(d[0], d[1], d[2]));
-		vec3 up = fabsf(dir.y) > 0.99f ? v3(1, 0, 0) : v3(0, 1, 0);
-		mat4 view = mat4_look_at(v3_sub(c, v3_scale(dir, 2.0f * radius)), c, up);
-		mat4 proj = mat4_ortho_reversed_z(2.0f * radius, 2.0f * radius, radius * 0.5f, radius * 3.5f);
-		r->shadow_view_proj = mat4_mul(proj, view);
-		memcpy(u->shadow_view_proj, r->shadow_view_proj.m, sizeof u->shadow_view_proj);
-	}
+	if (shadow_light >= 0)
+		fit_shadow(r, camera, shadow_light, u);
 	memcpy(r->frame_ubo.mapped, u, sizeof *u);
 }
 
@@ -471,58 +652,86 @@ static void push_object(struct aa_renderer *r, VkCommandBuffer cmd, int o, float
 	vkCmdPushConstants(cmd, r->scene_layout.layout, VK_SHADER_STAGE_ALL, 0, sizeof push, &push);
 }
 
-static VkDescriptorSet object_set(struct aa_renderer *r, int o)
+/* Draws one object: its material's set at the material's offset, its transform, its mesh from the
+ * uploaded vertices or, posed this frame, from the skinned ones. *bound tracks the vertex buffer. */
+static void draw_object(struct aa_renderer *r, VkCommandBuffer cmd, int o, float jx, float jy, uint32_t instance,
+			VkBuffer *bound)
 {
-	const struct aa_material *m = &r->scene->materials[r->scene->objects[o].material_index];
-	int t = m->pattern == AA_PATTERN_TEXTURE && m->texture_index >= 0 ? m->texture_index
-									   : r->scene->texture_count;
-	return r->texture_sets[t];
+	const struct aa_object *obj = &r->scene->objects[o];
+	VkDescriptorSet set = r->material_sets[obj->material_index];
+	uint32_t material_offset = (uint32_t)(obj->material_index * r->upload->material_stride);
+	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_layout.layout, 0, 1, &set, 1,
+				&material_offset);
+	push_object(r, cmd, o, jx, jy);
+	const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
+	bool skinned = r->skin_offset[o] >= 0;
+	VkBuffer vertices = skinned ? r->skinned_vertices.buffer : r->upload->vertices.buffer;
+	if (vertices != *bound) {
+		VkDeviceSize zero = 0;
+		vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &zero);
+		*bound = vertices;
+	}
+	vkCmdDrawIndexed(cmd, m->index_count, 1, r->upload->mesh_first_index[obj->mesh_index],
+			 skinned ? r->skin_offset[o] : (int32_t)r->upload->mesh_vertex_offset[obj->mesh_index], instance);
 }
 
-/* Draws every object: opaque ones first, cut-outs with the discard pipelines after them. opaque and
- * cutout hold one pipeline per material class, or one for all objects when classes is 1. */
+/* Draws every object: opaque ones first, cut-outs with the discard pipelines after them, then the blended
+ * ones from the farthest (sorted each frame). opaque and cutout hold one pipeline per material class, or
+ * with classes 0 one for all objects: the shadow map, where instance is the cascade, blended objects
+ * cast no shadow and visible[o] false skips an object outside the cascade. */
 static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struct aa_gpu_pipeline *opaque,
-			 const struct aa_gpu_pipeline *cutout, int classes, float jx, float jy)
+			 const struct aa_gpu_pipeline *cutout, int classes, float jx, float jy, uint32_t instance,
+			 const bool *visible)
 {
-	VkDeviceSize zero = 0;
-	vkCmdBindVertexBuffers(cmd, 0, 1, &r->upload->vertices.buffer, &zero);
+	VkBuffer bound = VK_NULL_HANDLE;
 	vkCmdBindIndexBuffer(cmd, r->upload->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-	for (int pass = 0; pass < 2; pass++) {
-		VkPipeline bound = VK_NULL_HANDLE;
-		for (int o = 0; o < r->scene->object_count; o++) {
+	for (int pass = 0; pass < 3; pass++) {
+		VkPipeline pipeline = VK_NULL_HANDLE;
+		int count = pass == 2 ? (classes > 0 ? r->blend_count : 0) : r->scene->object_count;
+		for (int k = 0; k < count; k++) {
+			int o = pass == 2 ? r->blend_order[k] : k;
 			const struct aa_object *obj = &r->scene->objects[o];
-			int c = classes > 1 ? r->object_class[o] : 0;
-			bool is_cutout = r->scene->materials[obj->material_index].alpha_cutout && cutout &&
-					 cutout[c].pipeline;
-			if (is_cutout != (pass == 1))
+			const struct aa_material *mat = &r->scene->materials[obj->material_index];
+			int c = classes > 0 ? r->object_class[o] : 0;
+			bool is_cutout = mat->alpha_cutout && !mat->blend && cutout && cutout[c].pipeline;
+			if ((pass < 2 && (mat->blend || is_cutout != (pass == 1))) || (visible && !visible[o]))
 				continue;
 			const struct aa_gpu_pipeline *p = is_cutout ? &cutout[c] : &opaque[c];
 			if (!p->pipeline)
 				continue;
-			if (p->pipeline != bound) {
+			if (p->pipeline != pipeline) {
 				vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
-				bound = p->pipeline;
+				pipeline = p->pipeline;
 			}
-			VkDescriptorSet set = object_set(r, o);
-			uint32_t material_offset = (uint32_t)(obj->material_index * r->upload->material_stride);
-			vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r->scene_layout.layout, 0, 1,
-						&set, 1, &material_offset);
-			push_object(r, cmd, o, jx, jy);
-			const struct aa_mesh *m = &r->scene->meshes[obj->mesh_index];
-			vkCmdDrawIndexed(cmd, m->index_count, 1, r->upload->mesh_first_index[obj->mesh_index],
-					 (int32_t)r->upload->mesh_vertex_offset[obj->mesh_index], 0);
+			draw_object(r, cmd, o, jx, jy, instance, &bound);
 		}
 	}
 }
 
+/* The cascades, each drawn into its quarter of the atlas with only the objects over its window. */
 void aa_renderer_record_shadow(struct aa_renderer *r, VkCommandBuffer cmd)
 {
 	if (!r->plan.shadow_map)
 		return;
 	VkClearValue clear = {.depthStencil = {0.0f, 0}};
-	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, AA_SHADOW_MAP_SIZE, AA_SHADOW_MAP_SIZE,
-			  &clear, 1);
-	draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 1, 0.0f, 0.0f);
+	/* only the tiles of the cascades in use are cleared and drawn: the shader never reads past the last
+	 * (its split is infinite) */
+	int count = r->shadow_fit.cascade_count;
+	aa_gpu_begin_pass(cmd, r->shadow_pass, r->shadow_framebuffer, count > 1 ? AA_SHADOW_MAP_SIZE : AA_SHADOW_TILE_SIZE,
+			  count > 2 ? AA_SHADOW_MAP_SIZE : AA_SHADOW_TILE_SIZE, &clear, 1);
+	bool *visible = malloc((size_t)(r->scene->object_count ? r->scene->object_count : 1) * sizeof *visible);
+	for (int i = 0; i < r->shadow_fit.cascade_count && visible; i++) {
+		VkViewport viewport = {(float)((i & 1) * AA_SHADOW_TILE_SIZE), (float)((i >> 1) * AA_SHADOW_TILE_SIZE),
+				       AA_SHADOW_TILE_SIZE, AA_SHADOW_TILE_SIZE, 0.0f, 1.0f};
+		VkRect2D scissor = {{(i & 1) * AA_SHADOW_TILE_SIZE, (i >> 1) * AA_SHADOW_TILE_SIZE},
+				    {AA_SHADOW_TILE_SIZE, AA_SHADOW_TILE_SIZE}};
+		vkCmdSetViewport(cmd, 0, 1, &viewport);
+		vkCmdSetScissor(cmd, 0, 1, &scissor);
+		for (int o = 0; o < r->scene->object_count; o++)
+			visible[o] = aa_shadow_cascade_sees(&r->shadow_fit, i, &r->bounds[o]);
+		draw_objects(r, cmd, &r->shadow_pipeline, &r->shadow_cutout_pipeline, 0, 0.0f, 0.0f, (uint32_t)i, visible);
+	}
+	free(visible);
 	vkCmdEndRenderPass(cmd);
 	r->shadow_map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
@@ -633,7 +842,7 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 	aa_gpu_begin_pass(cmd, v->pass, t->framebuffer, t->width, t->height, clears, n);
 	/* NDC spans 2 units over the target: a jitter of j pixels is 2j/size in NDC. */
 	draw_objects(r, cmd, v->opaque, v->cutout, r->material_class_count, 2.0f * jitter_x_px / t->width,
-		     2.0f * jitter_y_px / t->height);
+		     2.0f * jitter_y_px / t->height, 0, NULL);
 	vkCmdEndRenderPass(cmd);
 	t->color.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 	t->resolved.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

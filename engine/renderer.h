@@ -10,11 +10,16 @@
 #include "job.h"
 #include "scene/scene.h"
 #include "scene_upload.h"
+#include "shadow_fit.h"
 
 #define AA_MAX_LIGHTS 8
 #define AA_SCENE_COLOR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
 #define AA_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
-#define AA_SHADOW_MAP_SIZE 2048
+#define AA_SHADOW_MAP_SIZE 2048 /* the atlas: AA_SHADOW_CASCADES maps of AA_SHADOW_TILE_SIZE^2 in a 2x2 grid (as many
+				 * texels as one 2048^2 map: the shadow pass costs what one map over the scene did) */
+#define AA_SHADOW_TILE_SIZE (AA_SHADOW_MAP_SIZE / 2)
+/* 16 bits are ample over each cascade's tight depth range, and half the memory of 32 */
+#define AA_SHADOW_FORMAT VK_FORMAT_D16_UNORM
 
 /* std140 layout of `Frame` in shaders/common.glsl */
 struct aa_frame_uniforms {
@@ -31,14 +36,22 @@ struct aa_frame_uniforms {
 		float color_range[4];
 		float shadow[4];
 	} lights[AA_MAX_LIGHTS];
+	float shadow_light_view[16];
+	float shadow_cascade_scale[AA_SHADOW_CASCADES][4];  /* w: half a texel of the tile (uv clamp) */
+	float shadow_cascade_offset[AA_SHADOW_CASCADES][4]; /* w: depth bias, a texel's depth */
+	float shadow_splits[4];
+	float camera_forward[4];
 };
 
-/* std430 `Material` */
+/* std140 `Material` */
 struct aa_material_gpu {
 	float base_color[4];
 	float color2[4];
 	float pattern[4];
 	float shading[4];
+	float emissive[4];           /* w: metallic */
+	float maps[4];               /* x: normal scale, y: occlusion strength */
+	float uv_rows[AA_MAP_COUNT * 2][4];
 };
 
 /* push constants `Draw` (128 bytes, the guaranteed minimum) */
@@ -83,10 +96,16 @@ struct aa_scene_target_desc {
 
 /* What a scene pipeline compiles in for one kind of material: shaders/shading.glsl's specialization
  * constants. llvmpipe executes every branch under a mask, so each class gets only its own paths. */
-#define AA_MAX_MATERIAL_CLASSES 16
+#define AA_MAX_MATERIAL_CLASSES 64
 struct aa_material_class {
 	uint32_t pattern;          /* AA_PATTERN_* */
 	bool unlit, specular;
+	/* materials from mesh files, and how the class is drawn */
+	bool metal_rough, vertex_color, normal_map, metal_rough_map, occlusion_map, uv_transform;
+	uint32_t emissive;         /* 0 none, 1 a colour, 2 a colour times a texture */
+	bool blend;                /* alpha blended after the opaque objects, no depth writes */
+	bool single_sided;         /* back faces culled */
+	bool skinned;              /* velocity from the previous frame's skinned positions */
 	bool opaque_used, cutout_used; /* drawn by an opaque object / a cut-out object with alpha test */
 };
 
@@ -143,16 +162,26 @@ struct aa_renderer {
 	struct aa_gpu_pipeline shadow_pipeline, shadow_cutout_pipeline;
 	VkDescriptorPool pool;           /* the texture sets */
 	VkDescriptorPool pass_pool;      /* the sets of the job's full-screen passes: reset for the next job */
-	VkDescriptorSet *texture_sets;   /* one per texture (+ white): frame UBO, materials, texture, shadow */
+	VkDescriptorSet *material_sets;  /* one per material: frame UBO, materials, its textures, shadow map */
 	struct aa_material_class material_classes[AA_MAX_MATERIAL_CLASSES];
 	int material_class_count;
 	uint8_t *object_class;           /* per object: its material's class */
 	int light_count, shadow_light;   /* lights in the frame uniforms; the one using the shadow map or -1 */
 	uint32_t point_lights;           /* bit i: light i is a point light */
 	struct aa_frame_uniforms uniforms;
-	struct aa_gpu_buffer prev_models; /* per object, previous frame's model matrix (host-visible) */
+	struct aa_gpu_buffer prev_models; /* per model_id - 1, previous frame's model matrix (host-visible) */
 	mat4 *models;                    /* per object, this frame */
 	mat4 shadow_view_proj;
+	struct aa_shadow_fit shadow_fit; /* this frame's cascades */
+	struct aa_box *bounds;           /* per object, this frame's world box */
+	int *blend_order;                /* the blended objects, farthest first this frame */
+	int blend_count;
+	/* skinned and animated mesh parts, posed on the CPU each frame: this frame's vertices (drawn instead of
+	 * the uploaded ones) and the previous frame's positions (read by the G-buffer for velocity) */
+	struct aa_gpu_buffer skinned_vertices, skinned_previous;
+	int32_t *skin_offset;            /* per object: its first vertex in those buffers, -1 if not skinned */
+	mat4 *joint_matrices;            /* scratch, the largest rig's joints */
+	struct aa_vertex *skin_scratch;  /* scratch, the largest skinned part's vertices */
 	bool inject_nonfinite;           /* stability tests: the next set_frame poisons some pixels */
 };
 

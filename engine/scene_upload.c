@@ -68,7 +68,15 @@ static int upload_materials(struct aa_scene_upload *r, const struct aa_scene *s,
 		g->shading[0] = m->specular;
 		g->shading[1] = m->roughness;
 		g->shading[2] = m->alpha_cutoff;
-		g->shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0));
+		g->shading[3] = (float)((m->alpha_cutout ? 1 : 0) | (m->unlit ? 2 : 0) | (m->vertex_color ? 4 : 0));
+		memcpy(g->emissive, m->emissive, sizeof m->emissive);
+		g->emissive[3] = m->metallic;
+		g->maps[0] = m->normal_scale;
+		g->maps[1] = m->occlusion_strength;
+		for (int k = 0; k < AA_MAP_COUNT; k++) {
+			memcpy(g->uv_rows[2 * k], m->uv_transform[k], 3 * sizeof(float));
+			memcpy(g->uv_rows[2 * k + 1], m->uv_transform[k] + 3, 3 * sizeof(float));
+		}
 	}
 	int rc = aa_gpu_buffer_upload(r->gpu, &r->materials, bytes, (VkDeviceSize)n * r->material_stride,
 				      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, err);
@@ -84,7 +92,9 @@ static int upload_textures(struct aa_scene_upload *r, const struct aa_scene *s, 
 	VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 	for (int i = 0; i < s->texture_count; i++) {
 		const struct aa_texture *t = &s->textures[i];
-		if (aa_gpu_image_create(r->gpu, &r->textures[i], t->width, t->height, VK_FORMAT_R8G8B8A8_SRGB, usage,
+		/* colour is stored sRGB-encoded; normal, roughness and occlusion maps are data, read as stored */
+		VkFormat format = t->linear ? VK_FORMAT_R8G8B8A8_UNORM : VK_FORMAT_R8G8B8A8_SRGB;
+		if (aa_gpu_image_create(r->gpu, &r->textures[i], t->width, t->height, format, usage,
 					1, (uint32_t)t->mip_levels, err) ||
 		    aa_gpu_image_upload_rgba8(r->gpu, &r->textures[i], (const uint8_t *const *)t->mips, err))
 			return -1;

@@ -17,6 +17,12 @@ OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "
 
 def write_png(path, width, height, channels, pixel):
     """pixel(x, y) -> tuple of `channels` bytes (0..255); 8-bit RGB or RGBA, no interlace."""
+    with open(path, "wb") as f:
+        f.write(png_bytes(width, height, channels, pixel))
+
+
+def png_bytes(width, height, channels, pixel):
+    """The PNG file write_png writes, as bytes (for data URIs)."""
     raw = bytearray()
     for y in range(height):
         raw.append(0)  # filter: none
@@ -32,8 +38,7 @@ def write_png(path, width, height, channels, pixel):
     png += chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0))
     png += chunk(b"IDAT", zlib.compress(bytes(raw), 9))
     png += chunk(b"IEND", b"")
-    with open(path, "wb") as f:
-        f.write(png)
+    return png
 
 
 def hash01(x, y, seed=0):
@@ -183,6 +188,418 @@ def write_gltf(path, name, pos, nrm, uv, idx):
         f.write("\n")
 
 
+
+# ---------------------------------------------------------------- test assets (tests/assets/)
+# Small glTF files, a few KB each with their data in data URIs, one per material or skin feature, and one
+# broken file per refusal rule of the loader (docs/scene-format.md, "Mesh files"). The tests load them by
+# name; change a file here, rerun, and commit the outputs with the tests that read them.
+
+TEST_OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "assets")
+
+
+class Gltf:
+    """A glTF 2.0 document under construction, its binary data in one buffer."""
+
+    def __init__(self):
+        self.blob = bytearray()
+        self.doc = {"asset": {"version": "2.0", "generator": "aalab scripts/make_scene_assets.py"},
+                    "scene": 0, "scenes": [{"nodes": []}], "nodes": [], "meshes": [], "buffers": [],
+                    "bufferViews": [], "accessors": []}
+
+    def add(self, key, item):
+        self.doc.setdefault(key, []).append(item)
+        return len(self.doc[key]) - 1
+
+    def accessor(self, values, fmt, gltf_type, component, minmax=False, normalized=False):
+        """values: a list of tuples (or numbers), packed with struct format `fmt` per element."""
+        while len(self.blob) % 4:
+            self.blob.append(0)
+        start = len(self.blob)
+        for v in values:
+            self.blob += struct.pack("<" + fmt, *(v if isinstance(v, (tuple, list)) else (v,)))
+        view = self.add("bufferViews", {"buffer": 0, "byteOffset": start, "byteLength": len(self.blob) - start})
+        acc = {"bufferView": view, "componentType": component, "count": len(values), "type": gltf_type}
+        if normalized:
+            acc["normalized"] = True
+        if minmax:
+            rows = [v if isinstance(v, (tuple, list)) else (v,) for v in values]
+            acc["min"] = [min(r[k] for r in rows) for k in range(len(rows[0]))]
+            acc["max"] = [max(r[k] for r in rows) for k in range(len(rows[0]))]
+        return self.add("accessors", acc)
+
+    def vec3(self, values, minmax=False):
+        return self.accessor(values, "3f", "VEC3", 5126, minmax)
+
+    def vec2(self, values):
+        return self.accessor(values, "2f", "VEC2", 5126)
+
+    def vec4(self, values):
+        return self.accessor(values, "4f", "VEC4", 5126)
+
+    def indices(self, values):
+        return self.accessor(values, "H", "SCALAR", 5123)
+
+    def image(self, width, height, channels, pixel):
+        uri = "data:image/png;base64," + base64.b64encode(png_bytes(width, height, channels, pixel)).decode()
+        return self.add("images", {"uri": uri})
+
+    def texture(self, image, sampler=None):
+        if sampler is None:
+            if "samplers" not in self.doc:
+                self.add("samplers", {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497})
+            sampler = 0
+        return self.add("textures", {"source": image, "sampler": sampler})
+
+    def material(self, **fields):
+        return self.add("materials", fields)
+
+    def mesh_node(self, primitives, name, translation=None, extra=None):
+        mesh = self.add("meshes", {"name": name, "primitives": primitives})
+        node = {"name": name, "mesh": mesh}
+        if translation:
+            node["translation"] = list(translation)
+        node.update(extra or {})
+        index = self.add("nodes", node)
+        self.doc["scenes"][0]["nodes"].append(index)
+        return index
+
+    def json_text(self):
+        doc = dict(self.doc)
+        doc["buffers"] = [{"byteLength": len(self.blob), "uri": "data:application/octet-stream;base64," +
+                           base64.b64encode(bytes(self.blob)).decode()}]
+        return json.dumps(doc, indent=1) + "\n"
+
+    def glb(self):
+        doc = dict(self.doc)
+        blob = bytes(self.blob) + b"\0" * (-len(self.blob) % 4)
+        doc["buffers"] = [{"byteLength": len(blob)}]
+        text = json.dumps(doc).encode()
+        text += b" " * (-len(text) % 4)
+        body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(blob), 0x004E4942) + blob
+        return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+    def write(self, name):
+        with open(os.path.join(TEST_OUT, name), "w") as f:
+            f.write(self.json_text())
+
+
+def quad(g, size=1.0, material=None, colors=None, tangents=None, uv=None, extra_attributes=None):
+    """A square in the xy plane facing +z, centred; uv (0,0) at the top left corner (glTF's convention).
+    Returns a primitive."""
+    h = size / 2
+    pos = [(-h, h, 0), (h, h, 0), (h, -h, 0), (-h, -h, 0)]
+    uvs = uv or [(0, 0), (1, 0), (1, 1), (0, 1)]
+    attrs = {"POSITION": g.vec3(pos, minmax=True), "NORMAL": g.vec3([(0, 0, 1)] * 4), "TEXCOORD_0": g.vec2(uvs)}
+    if colors:
+        attrs["COLOR_0"] = g.vec4(colors)
+    if tangents:
+        attrs["TANGENT"] = g.vec4(tangents)
+    attrs.update(extra_attributes or {})
+    prim = {"attributes": attrs, "indices": g.indices([0, 3, 2, 0, 2, 1]), "mode": 4}
+    if material is not None:
+        prim["material"] = material
+    return prim
+
+
+def quadrants(x, y, size=8):
+    """An 8x8 texture of four flat quadrants: red, green / blue, white (sRGB bytes)."""
+    left, top = x < size // 2, y < size // 2
+    return {(True, True): (255, 0, 0), (False, True): (0, 255, 0), (True, False): (0, 0, 255),
+            (False, False): (255, 255, 255)}[(left, top)]
+
+
+def test_base_color(path):
+    """Left: baseColorFactor only; right: a quadrant texture times a factor; far right: unlit."""
+    g = Gltf()
+    red = g.material(name="factor", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.1, 0.1, 1.0],
+                                                          "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    tex = g.texture(g.image(8, 8, 3, quadrants))
+    textured = g.material(name="texture", pbrMetallicRoughness={"baseColorTexture": {"index": tex},
+                                                                "baseColorFactor": [1.0, 1.0, 0.5, 1.0],
+                                                                "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    unlit = g.material(name="unlit", pbrMetallicRoughness={"baseColorFactor": [0.2, 0.6, 0.9, 1.0]},
+                       extensions={"KHR_materials_unlit": {}})
+    g.doc["extensionsUsed"] = ["KHR_materials_unlit"]
+    g.mesh_node([quad(g, material=red)], "factor", (-1.1, 0, 0))
+    g.mesh_node([quad(g, material=textured)], "texture", (0, 0, 0))
+    g.mesh_node([quad(g, material=unlit)], "unlit", (1.1, 0, 0))
+    g.write(path)
+
+
+def test_vertex_colors(path):
+    g = Gltf()
+    white = g.material(name="white", pbrMetallicRoughness={"metallicFactor": 0.0, "roughnessFactor": 1.0})
+    g.mesh_node([quad(g, size=2.0, material=white,
+                      colors=[(1, 0, 0, 1), (0, 1, 0, 1), (0, 0, 1, 1), (1, 1, 1, 1)])], "colors")
+    g.write(path)
+
+
+def test_emissive(path):
+    """Black surfaces that glow: a factor times KHR_materials_emissive_strength, and a texture."""
+    g = Gltf()
+    glow = g.material(name="strength", emissiveFactor=[0.4, 0.2, 0.0],
+                      pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                      extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}})
+    tex = g.texture(g.image(8, 8, 3, quadrants))
+    glow_tex = g.material(name="texture", emissiveFactor=[1.0, 1.0, 1.0], emissiveTexture={"index": tex},
+                          pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0})
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    g.mesh_node([quad(g, material=glow)], "strength", (-0.6, 0, 0))
+    g.mesh_node([quad(g, material=glow_tex)], "texture", (0.6, 0, 0))
+    g.write(path)
+
+
+def test_normal_map(path):
+    """Two quads lit from +x at a grazing angle. Their normal texture tilts every normal 45 degrees toward
+    the tangent (+u): the left quad has no tangents (generated: +u is +x, so it turns to the light and is
+    brighter), the right one gives TANGENT = -x (the same texture then turns it away: darker)."""
+    g = Gltf()
+    tilt = (int(round(255 * (0.5 + 0.5 * math.sqrt(0.5)))), 128, int(round(255 * (0.5 + 0.5 * math.sqrt(0.5)))))
+    tex = g.texture(g.image(4, 4, 3, lambda x, y: tilt))
+    mat = g.material(name="bumpy", normalTexture={"index": tex, "scale": 1.0},
+                     pbrMetallicRoughness={"baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0,
+                                           "roughnessFactor": 1.0})
+    g.mesh_node([quad(g, material=mat)], "generated", (-0.6, 0, 0))
+    g.mesh_node([quad(g, material=mat, tangents=[(-1, 0, 0, 1)] * 4)], "given", (0.6, 0, 0))
+    g.write(path)
+
+
+def test_alpha_modes(path):
+    """MASK (a texture whose left half is transparent, cutoff 0.5), BLEND (a red factor with alpha 0.5) and
+    OPAQUE (alpha 0.2 in the factor, ignored), left to right."""
+    g = Gltf()
+    half = g.texture(g.image(8, 8, 4, lambda x, y: (40, 200, 40, 0 if x < 4 else 255)))
+    mask = g.material(name="mask", alphaMode="MASK", alphaCutoff=0.5,
+                      pbrMetallicRoughness={"baseColorTexture": {"index": half}, "metallicFactor": 0.0})
+    blend = g.material(name="blend", alphaMode="BLEND",
+                       pbrMetallicRoughness={"baseColorFactor": [1.0, 0.0, 0.0, 0.5], "metallicFactor": 0.0})
+    opaque = g.material(name="opaque", pbrMetallicRoughness={"baseColorFactor": [0.1, 0.1, 0.9, 0.2],
+                                                             "metallicFactor": 0.0})
+    g.mesh_node([quad(g, material=mask)], "mask", (-1.1, 0, 0))
+    g.mesh_node([quad(g, material=blend)], "blend", (0, 0, 0))
+    g.mesh_node([quad(g, material=opaque)], "opaque", (1.1, 0, 0))
+    g.write(path)
+
+
+def test_blend_order(path):
+    """Two BLEND quads that overlap: a green one in front (z = 0.2), listed first, and a red one behind. Drawn
+    in file order the green one would be under the red one; sorted back to front it is over it."""
+    g = Gltf()
+    green = g.material(name="near", alphaMode="BLEND",
+                       pbrMetallicRoughness={"baseColorFactor": [0.0, 1.0, 0.0, 0.5], "metallicFactor": 0.0})
+    red = g.material(name="far", alphaMode="BLEND",
+                     pbrMetallicRoughness={"baseColorFactor": [1.0, 0.0, 0.0, 0.5], "metallicFactor": 0.0})
+    g.mesh_node([quad(g, material=green)], "near", (-0.25, 0, 0.2))
+    g.mesh_node([quad(g, material=red)], "far", (0.25, 0, 0))
+    g.write(path)
+
+
+def test_double_sided(path):
+    """Two quads facing away from the camera (-z): doubleSided true (seen from behind) and false (culled)."""
+    g = Gltf()
+    two = g.material(name="two-sided", doubleSided=True,
+                     pbrMetallicRoughness={"baseColorFactor": [0.9, 0.6, 0.1, 1], "metallicFactor": 0.0})
+    one = g.material(name="one-sided", doubleSided=False,
+                     pbrMetallicRoughness={"baseColorFactor": [0.1, 0.6, 0.9, 1], "metallicFactor": 0.0})
+    away = {"rotation": [0, 1, 0, 0]}  # 180 degrees about y
+    g.mesh_node([quad(g, material=two)], "two-sided", (-0.6, 0, 0), away)
+    g.mesh_node([quad(g, material=one)], "one-sided", (0.6, 0, 0), away)
+    g.write(path)
+
+
+def test_texture_transform(path):
+    """The quadrant texture: plain (left), and with KHR_texture_transform offset (0.5, 0.5) and rotation
+    90 degrees (right; glTF rotates uv counter-clockwise about the uv origin)."""
+    g = Gltf()
+    tex = g.texture(g.image(8, 8, 3, quadrants))
+    plain = g.material(name="plain", pbrMetallicRoughness={"baseColorTexture": {"index": tex},
+                                                           "metallicFactor": 0.0})
+    moved = g.material(name="moved", pbrMetallicRoughness={
+        "baseColorTexture": {"index": tex, "extensions": {"KHR_texture_transform": {
+            "offset": [0.5, 0.5], "rotation": math.pi / 2, "scale": [1.0, 1.0]}}}, "metallicFactor": 0.0})
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    g.mesh_node([quad(g, material=plain)], "plain", (-0.6, 0, 0))
+    g.mesh_node([quad(g, material=moved)], "moved", (0.6, 0, 0))
+    g.write(path)
+
+
+def test_metallic_roughness(path):
+    """A rough dielectric, a smooth metal and one whose metalness and roughness come from a texture
+    (blue = metallic, green = roughness), with an occlusion texture darkening its ambient light."""
+    g = Gltf()
+    rough = g.material(name="rough", pbrMetallicRoughness={"baseColorFactor": [0.7, 0.7, 0.7, 1],
+                                                           "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    metal = g.material(name="metal", pbrMetallicRoughness={"baseColorFactor": [0.9, 0.7, 0.3, 1],
+                                                           "metallicFactor": 1.0, "roughnessFactor": 0.3})
+    orm = g.texture(g.image(8, 8, 3, lambda x, y: (64, 40 if x < 4 else 230, 255 if y < 4 else 0)))
+    mapped = g.material(name="mapped", occlusionTexture={"index": orm, "strength": 1.0},
+                        pbrMetallicRoughness={"baseColorFactor": [0.9, 0.9, 0.9, 1],
+                                              "metallicRoughnessTexture": {"index": orm}})
+    g.mesh_node([quad(g, material=rough)], "rough", (-1.1, 0, 0))
+    g.mesh_node([quad(g, material=metal)], "metal", (0, 0, 0))
+    g.mesh_node([quad(g, material=mapped)], "mapped", (1.1, 0, 0))
+    g.write(path)
+
+
+def skin_document(cubic=False):
+    """A bar 0.2 wide and 2 tall standing on the origin, in two segments: the lower follows joint 0 (at the
+    origin), the upper joint 1 (at y = 1, a child of joint 0); the middle ring is shared half and half.
+    The mesh's own node has a transform that the glTF spec says to ignore for skinned meshes (a loader
+    that applies it puts the bar 100 units to the right). Animation "bend" turns joint 1 from 0 to 90
+    degrees about +z (to the left) over one second."""
+    g = Gltf()
+    h = 0.1
+    pos, nrm, joints, weights = [], [], [], []
+    for y, j, w in ((0.0, (0, 0, 0, 0), (1, 0, 0, 0)), (1.0, (0, 1, 0, 0), (0.5, 0.5, 0, 0)),
+                    (2.0, (1, 0, 0, 0), (1, 0, 0, 0))):
+        for x, z in ((-h, h), (h, h), (h, -h), (-h, -h)):
+            pos.append((x, y, z))
+            length = math.sqrt(x * x + z * z)
+            nrm.append((x / length, 0.0, z / length))
+            joints.append(j)
+            weights.append(w)
+    idx = []
+    for ring in range(2):
+        for k in range(4):
+            a, b = ring * 4 + k, ring * 4 + (k + 1) % 4
+            idx += [a, b, b + 4, a, b + 4, a + 4]  # counter-clockwise seen from outside
+    mat = g.material(name="bar", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.5, 0.2, 1],
+                                                       "metallicFactor": 0.0})
+    prim = {"attributes": {"POSITION": g.vec3(pos, minmax=True), "NORMAL": g.vec3(nrm),
+                           "JOINTS_0": g.accessor(joints, "4B", "VEC4", 5121),
+                           "WEIGHTS_0": g.vec4(weights)},
+            "indices": g.indices(idx), "material": mat, "mode": 4}
+    ibm = g.accessor([(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1),
+                      (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1)], "16f", "MAT4", 5126)
+    mesh = g.add("meshes", {"name": "bar", "primitives": [prim]})
+    g.doc["nodes"] = [
+        {"name": "bar", "mesh": mesh, "skin": 0, "translation": [100, 0, 0], "rotation": [0, 0, 0.7071068, 0.7071068]},
+        {"name": "joint0", "children": [2]},
+        {"name": "joint1", "translation": [0, 1, 0]},
+    ]
+    g.doc["scenes"][0]["nodes"] = [0, 1]
+    g.doc["skins"] = [{"joints": [1, 2], "inverseBindMatrices": ibm, "skeleton": 1}]
+    times = [0.0, 1.0] if not cubic else [0.0, 1.0]
+    s = math.sqrt(0.5)
+    if cubic:  # in-tangent, value, out-tangent per key
+        values = [(0, 0, 0, 0), (0, 0, 0, 1), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, s, s), (0, 0, 0, 0)]
+    else:
+        values = [(0, 0, 0, 1), (0, 0, s, s)]
+    inp = g.accessor(times, "f", "SCALAR", 5126, minmax=True)
+    out = g.vec4(values)
+    g.doc["animations"] = [{"name": "bend", "samplers": [
+        {"input": inp, "output": out, "interpolation": "CUBICSPLINE" if cubic else "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}]}]
+    return g
+
+
+def broken_file(name, text):
+    with open(os.path.join(TEST_OUT, name), "w") as f:
+        f.write(text)
+
+
+def test_broken_files():
+    """One file per refusal rule (the file name says which)."""
+    g = Gltf()
+    g.mesh_node([quad(g)], "quad")
+    g.doc["extensionsUsed"] = ["EXT_unknown_foo"]
+    g.doc["extensionsRequired"] = ["EXT_unknown_foo"]
+    g.write("broken-required-extension.gltf")
+
+    g = Gltf()
+    prim = quad(g)
+    prim["indices"] = g.indices([0, 3, 2, 0, 2, 60000])
+    g.mesh_node([prim], "quad")
+    g.write("broken-index-range.gltf")
+
+    for name, bad in (("nan", float("nan")), ("huge", 1e30)):
+        g = Gltf()
+        prim = quad(g)
+        prim["attributes"]["POSITION"] = g.vec3([(-0.5, 0.5, 0), (0.5, 0.5, 0), (bad, -0.5, 0), (-0.5, -0.5, 0)])
+        g.mesh_node([prim], "quad")
+        g.write("broken-%s-position.gltf" % name)
+        broken_file("broken-%s-position.obj" % name,
+                    "# a triangle with a bad vertex\nv 0 0 0\nv 1 0 0\nv %s 1 0\nf 1 2 3\n" %
+                    ("nan" if name == "nan" else "1e30"))
+    broken_file("broken-huge-position.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "end_header\n0 0 0\n1 0 0\n0 3e9 0\n3 0 1 2\n")
+    broken_file("broken-index-range.obj", "# a face naming vertex 9 of 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+
+    g = Gltf()
+    g.mesh_node([quad(g)], "quad")
+    glb = g.glb()
+    with open(os.path.join(TEST_OUT, "broken-truncated.glb"), "wb") as f:
+        f.write(glb[:len(glb) // 2])
+    broken_file("broken-not-json.gltf", "This file is named .gltf but is not JSON: { no\n")
+    broken_file("broken-gltf1.gltf", json.dumps({
+        "asset": {"version": "1.0"}, "scene": "defaultScene", "scenes": {"defaultScene": {"nodes": []}},
+        "nodes": {}, "meshes": {}}, indent=1) + "\n")
+
+    g = Gltf()
+    tex = g.add("textures", {"source": g.add("images", {"uri": "missing-texture.png"})})
+    mat = g.material(name="lost", pbrMetallicRoughness={"baseColorTexture": {"index": tex}})
+    g.mesh_node([quad(g, material=mat)], "quad")
+    g.write("broken-missing-texture.gltf")
+
+    g = Gltf()
+    prim = quad(g)
+    prim["targets"] = [{"POSITION": g.vec3([(0, 0, 0.5)] * 4)}]
+    g.mesh_node([prim], "quad")
+    g.doc["meshes"][0]["weights"] = [0.5]
+    g.write("broken-morph-targets.gltf")
+
+    broken_file("broken-missing-mtl.obj", "mtllib no-such-file.mtl\nusemtl paint\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    broken_file("broken-missing-map.obj", "mtllib broken-missing-map.mtl\nusemtl paint\nv 0 0 0\nv 1 0 0\n"
+                "v 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    broken_file("broken-missing-map.mtl", "newmtl paint\nKd 0.8 0.2 0.2\nmap_Kd no-such-image.png\n")
+
+
+def test_warning_file(path):
+    """Loads, with things aalab drops or approximates: an extension it does not know (used, not required),
+    a texture read through TEXCOORD_1, a CUBICSPLINE animation (interpolated linearly) and a metallicFactor
+    over 1 (clamped)."""
+    g = skin_document(cubic=True)
+    tex = g.texture(g.image(8, 8, 3, quadrants))
+    mat = g.doc["materials"][0]
+    mat["pbrMetallicRoughness"]["baseColorTexture"] = {"index": tex, "texCoord": 1}
+    mat["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}
+    mat["pbrMetallicRoughness"]["metallicFactor"] = 1.5  # out of range: clamped to 1
+    prim = g.doc["meshes"][0]["primitives"][0]
+    prim["attributes"]["TEXCOORD_0"] = g.vec2([(0.25, 0.25)] * 12)
+    prim["attributes"]["TEXCOORD_1"] = g.vec2([(0.75, 0.75)] * 12)
+    g.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
+    g.write(path)
+
+
+def test_obj_with_material():
+    """An OBJ quad whose .mtl gives a diffuse colour and a texture (the quadrants), for file materials."""
+    broken_file("material.obj", "mtllib material.mtl\nusemtl painted\nv -0.5 0.5 0\nv 0.5 0.5 0\nv 0.5 -0.5 0\n"
+                "v -0.5 -0.5 0\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nvn 0 0 1\n"
+                "f 1/1/1 4/4/1 3/3/1\nf 1/1/1 3/3/1 2/2/1\n")
+    broken_file("material.mtl", "newmtl painted\nKd 1 1 0.5\nmap_Kd quadrants.png\n")
+    with open(os.path.join(TEST_OUT, "quadrants.png"), "wb") as f:
+        f.write(png_bytes(8, 8, 3, quadrants))
+
+
+def write_test_assets():
+    os.makedirs(TEST_OUT, exist_ok=True)
+    test_base_color("base-color.gltf")
+    test_vertex_colors("vertex-colors.gltf")
+    test_emissive("emissive.gltf")
+    test_normal_map("normal-map.gltf")
+    test_alpha_modes("alpha-modes.gltf")
+    test_blend_order("blend-order.gltf")
+    test_double_sided("double-sided.gltf")
+    test_texture_transform("texture-transform.gltf")
+    test_metallic_roughness("metallic-roughness.gltf")
+    skin_document().write("skin.gltf")
+    test_warning_file("warnings.gltf")
+    test_obj_with_material()
+    test_broken_files()
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     write_png(os.path.join(OUT, "tiles.png"), 256, 256, 3, tiles)
@@ -191,6 +608,8 @@ def main():
     gem_gltf(os.path.join(OUT, "gem.gltf"))
     box_gltf(os.path.join(OUT, "box.gltf"))
     print("wrote tiles.png chainlink.png torus.obj gem.gltf box.gltf to", os.path.normpath(OUT))
+    write_test_assets()
+    print("wrote the test assets to", os.path.normpath(TEST_OUT))
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@
 #define MAX_LIGHTS 8
 #define MATERIAL_CUTOUT 1u
 #define MATERIAL_UNLIT 2u
+#define MATERIAL_VERTEX_COLOR_FLAG 4u
+#define SHADOW_CASCADES 4
 #define PATTERN_NONE 0u
 #define PATTERN_CHECKER 1u
 #define PATTERN_STRIPES 2u
@@ -25,6 +27,14 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 	vec4 camera_planes;   // x: near, y: far, z: 1 if orthographic
 	ivec4 counts;         // x: light count, y: shadow map enabled, z: inject NaN/Inf (stability tests)
 	Light lights[MAX_LIGHTS];
+	// The shadow map: SHADOW_CASCADES orthographic maps in a 2x2 atlas, each fitted to a slice of the view
+	// (engine/shadow_fit.c). A point's light-space position times a cascade's scale plus its offset is
+	// that cascade's NDC; offset.w is its depth bias per unit of (1 - N.L) plus one.
+	mat4 shadow_light_view;               // world -> light space (rotation: x, y across the light, z toward it)
+	vec4 shadow_cascade_scale[SHADOW_CASCADES];
+	vec4 shadow_cascade_offset[SHADOW_CASCADES];
+	vec4 shadow_splits;                   // view depths where cascades 1, 2 and 3 begin
+	vec4 camera_forward;                  // unit view direction: view depth = dot(p - camera_position, forward)
 } frame;
 
 struct Material {
@@ -32,6 +42,10 @@ struct Material {
 	vec4 color2;          // rgb; w: pattern
 	vec4 pattern;         // xy: scale, z: stripe width
 	vec4 shading;         // x: specular, y: roughness, z: alpha cutoff, w: flags
+	vec4 emissive;        // rgb: emitted colour (strength applied); w: metallic
+	vec4 maps;            // x: normal map scale, y: occlusion strength
+	vec4 uv_rows[10];     // per map (base, emissive, normal, metal-rough, occlusion): uv' = (dot(r0, (u, v, 1)),
+			      // dot(r1, (u, v, 1))), KHR_texture_transform (the base map's is its scale otherwise)
 };
 
 // The drawn object's material: the scene's materials are one buffer, bound per draw at the material's

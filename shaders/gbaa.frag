@@ -12,6 +12,8 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) noperspective in vec3 in_edge_distance;
 layout(location = 4) flat in vec3 in_edge_vertical;
+layout(location = 8) in vec4 in_tangent;
+layout(location = 9) in vec4 in_color;
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_edge_offset;
@@ -19,10 +21,12 @@ layout(location = 1) out vec2 out_edge_offset;
 void main()
 {
 	Material m = material;
-	vec4 base = surface_color(m, in_uv);
+	vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+	vec4 base = surface_color_vertex(m, in_uv, uv_dx, uv_dy, in_color);
 	if (ALPHA_TEST && base.a < m.shading.z)
 		discard;
-	out_color = vec4(shade(m, base, in_world, in_normal, gl_FrontFacing), 1.0);
+	Surface s = Surface(in_world, in_normal, in_tangent, in_uv, uv_dx, uv_dy, gl_FrontFacing);
+	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 	int nearest = 0;
 	for (int e = 1; e < 3; e++)
 		if (abs(in_edge_distance[e]) < abs(in_edge_distance[nearest]))

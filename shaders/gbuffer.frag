@@ -18,6 +18,8 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_clip;
 layout(location = 4) in vec4 in_prev_clip;
 layout(location = 5) in vec3 in_barycentric; // virtual samples only
+layout(location = 8) in vec4 in_tangent;
+layout(location = 9) in vec4 in_color;
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_velocity;
@@ -31,10 +33,15 @@ void main()
 	vec3 world = in_world, normal = in_normal;
 	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
 	vec4 clip = in_clip, prev_clip = in_prev_clip;
+	vec4 tangent = in_tangent, vertex_color = in_color;
 	ShadingPoint sp = shading_point(in_barycentric);
 	if (SHADING_POINT_MODE != SHADING_POINT_FRAGMENT) {
 		uv = at_shading_point(in_uv, sp.offset);
 		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
+		if (MATERIAL_VERTEX_COLOR)
+			vertex_color = at_shading_point(in_color, sp.offset);
+		if (MATERIAL_NORMAL_MAP && !GEOMETRY_AT_SAMPLE)
+			tangent = at_shading_point(in_tangent, sp.offset);
 		if (!GEOMETRY_AT_SAMPLE) {
 			world = at_shading_point(in_world, sp.offset);
 			normal = at_shading_point(in_normal, sp.offset);
@@ -43,7 +50,7 @@ void main()
 		}
 	}
 	Material m = material;
-	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
+	vec4 base = surface_color_vertex(m, uv, uv_dx, uv_dy, vertex_color);
 	if (ALPHA_TEST) {
 		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
 			discard;
@@ -51,7 +58,8 @@ void main()
 		if (ALPHA_TO_COVERAGE && (alpha_coverage(base.a) & (1u << max(sp.own_sample, 0))) == 0u)
 			discard;
 	}
-	out_color = vec4(shade(m, base, world, normal, gl_FrontFacing), 1.0);
+	Surface s = Surface(world, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
+	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 	// pixels moved since the previous frame; w floors keep points at the eye finite
 	vec2 ndc = clip.xy / max(abs(clip.w), 1e-6);
 	vec2 prev_ndc = prev_clip.xy / max(abs(prev_clip.w), 1e-6);

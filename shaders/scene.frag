@@ -12,6 +12,8 @@ layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec3 in_barycentric; // virtual samples only (virtual_sample.geom)
+layout(location = 8) in vec4 in_tangent;
+layout(location = 9) in vec4 in_color;
 
 layout(location = 0) out vec4 out_color;
 
@@ -21,15 +23,20 @@ void main()
 	// shading point; texture gradients stay those of the pixel (a moved uv has none that mean anything).
 	vec3 world = in_world, normal = in_normal;
 	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+	vec4 tangent = in_tangent, vertex_color = in_color;
 	ShadingPoint sp = shading_point(in_barycentric);
 	if (SHADING_POINT_MODE != SHADING_POINT_FRAGMENT) {
 		world = at_shading_point(in_world, sp.offset);
 		normal = at_shading_point(in_normal, sp.offset);
 		uv = at_shading_point(in_uv, sp.offset);
 		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
+		if (MATERIAL_NORMAL_MAP)
+			tangent = at_shading_point(in_tangent, sp.offset);
+		if (MATERIAL_VERTEX_COLOR)
+			vertex_color = at_shading_point(in_color, sp.offset);
 	}
 	Material m = material;
-	vec4 base = surface_color_grad(m, uv, uv_dx, uv_dy);
+	vec4 base = surface_color_vertex(m, uv, uv_dx, uv_dy, vertex_color);
 	gl_SampleMask[0] = -1; // always written: an output left unwritten would be undefined
 	if (ALPHA_TEST) {
 		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
@@ -41,5 +48,6 @@ void main()
 			gl_SampleMask[0] = int(kept);
 		}
 	}
-	out_color = vec4(shade(m, base, world, normal, gl_FrontFacing), 1.0);
+	Surface s = Surface(world, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
+	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 }

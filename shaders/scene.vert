@@ -7,11 +7,15 @@
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+layout(location = 4) in vec4 in_color;
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 3) out vec3 out_barycentric; // virtual_sample.geom writes the real ones
+layout(location = 8) out vec4 out_tangent;     // normal maps
+layout(location = 9) out vec4 out_color;       // vertex colours
 
 void main()
 {
@@ -20,6 +24,8 @@ void main()
 	out_world = world.xyz;
 	out_normal = nm * in_normal;
 	out_uv = in_uv;
+	out_tangent = vec4(mat3(draw.model) * in_tangent.xyz, in_tangent.w);
+	out_color = in_color;
 	out_barycentric = vec3(1.0);
 	vec4 clip = frame.view_proj * world;
 	clip.xy += draw.jitter_ndc * clip.w;

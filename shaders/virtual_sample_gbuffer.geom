@@ -6,12 +6,16 @@ layout(triangle_strip, max_vertices = 3) out;
 layout(location = 0) in vec3 in_world[];
 layout(location = 1) in vec3 in_normal[];
 layout(location = 2) in vec2 in_uv[];
+layout(location = 8) in vec4 in_tangent[];
+layout(location = 9) in vec4 in_color[];
 layout(location = 3) in vec4 in_clip[];
 layout(location = 4) in vec4 in_prev_clip[];
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
+layout(location = 8) out vec4 out_tangent; // passed through: normal maps, vertex colours
+layout(location = 9) out vec4 out_color;
 layout(location = 3) out vec4 out_clip;
 layout(location = 4) out vec4 out_prev_clip;
 layout(location = 5) out vec3 out_barycentric;
@@ -23,6 +27,8 @@ void main()
 		out_world = in_world[v];
 		out_normal = in_normal[v];
 		out_uv = in_uv[v];
+		out_tangent = in_tangent[v];
+		out_color = in_color[v];
 		out_clip = in_clip[v];
 		out_prev_clip = in_prev_clip[v];
 		out_barycentric = vec3(v == 0, v == 1, v == 2);

@@ -14,4 +14,7 @@ grep -q "scene pass of none: .* x the floor pass" "$TMP/out" && pass "with the s
 expect_status 0 "bench/floor runs" -- "$top_srcdir/bench/floor" thin-wires 64x36 2 2
 grep -q "^scene / floor" "$TMP/out" && grep -q "^scene / copy" "$TMP/out" && pass "and prints its ratios" \
 	|| { fail "bench/floor printed no ratios"; sed 's/^/  | /' "$TMP/out" | head; }
+expect_status 0 "bench/materials runs" -- "$top_srcdir/bench/materials" 64x36 1 1
+grep -Eq "^  4-ggx-every-map +[0-9]" "$TMP/out" && pass "and prints a ratio per material" \
+	|| { fail "bench/materials printed no ratios"; sed 's/^/  | /' "$TMP/out" | head; }
 finish

@@ -118,7 +118,9 @@ struct aa_shader_code {
 };
 const struct aa_shader_code *aa_shader_find(const char *name); /* "scene.vert" */
 
-enum aa_blend { AA_BLEND_NONE, AA_BLEND_ADD };
+/* ALPHA: "over" into colour attachment 0 (straight alpha); every other attachment keeps what it holds
+ * (a G-buffer keeps the surface behind a blended one). */
+enum aa_blend { AA_BLEND_NONE, AA_BLEND_ADD, AA_BLEND_ALPHA };
 enum aa_vertex_layout { AA_VERTEX_NONE /* full-screen triangle from gl_VertexIndex */, AA_VERTEX_SCENE };
 
 struct aa_gpu_graphics_desc {
@@ -135,6 +137,7 @@ struct aa_gpu_graphics_desc {
 	float depth_bias_constant, depth_bias_slope;
 	VkPipelineLayout layout;
 	const VkSpecializationInfo *frag_specialization;
+	const VkSpecializationInfo *vert_specialization; /* optional */
 };
 
 struct aa_gpu_pipeline {

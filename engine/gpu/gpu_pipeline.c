@@ -81,7 +81,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 	}
 	VkPipelineShaderStageCreateInfo stages[3] = {
 		{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
-		 .module = vs, .pName = "main"},
+		 .module = vs, .pName = "main", .pSpecializationInfo = d->vert_specialization},
 	};
 	uint32_t stage_count = 1;
 	if (gs)
@@ -94,17 +94,19 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 			.stage = VK_SHADER_STAGE_FRAGMENT_BIT, .module = fs, .pName = "main",
 			.pSpecializationInfo = d->frag_specialization};
 	VkVertexInputBindingDescription vb = {0, sizeof(struct aa_vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-	VkVertexInputAttributeDescription va[3] = {
+	VkVertexInputAttributeDescription va[5] = {
 		{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(struct aa_vertex, position)},
 		{1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(struct aa_vertex, normal)},
 		{2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(struct aa_vertex, uv)},
+		{3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(struct aa_vertex, tangent)},
+		{4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(struct aa_vertex, color)},
 	};
 	bool scene = d->vertex_layout == AA_VERTEX_SCENE;
 	VkPipelineVertexInputStateCreateInfo vi = {
 		.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
 		.vertexBindingDescriptionCount = scene ? 1 : 0,
 		.pVertexBindingDescriptions = &vb,
-		.vertexAttributeDescriptionCount = scene ? 3 : 0,
+		.vertexAttributeDescriptionCount = scene ? 5 : 0,
 		.pVertexAttributeDescriptions = va,
 	};
 	VkPipelineInputAssemblyStateCreateInfo ia = {
@@ -138,7 +140,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 		.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, /* reversed-Z */
 	};
 	VkPipelineColorBlendAttachmentState cb[AA_GPU_MAX_COLOR];
-	for (int i = 0; i < AA_GPU_MAX_COLOR; i++)
+	for (int i = 0; i < AA_GPU_MAX_COLOR; i++) {
 		cb[i] = (VkPipelineColorBlendAttachmentState){
 			.blendEnable = d->blend == AA_BLEND_ADD,
 			.srcColorBlendFactor = VK_BLEND_FACTOR_ONE,
@@ -149,6 +151,14 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 			.alphaBlendOp = VK_BLEND_OP_ADD,
 			.colorWriteMask = 0xf,
 		};
+		if (d->blend == AA_BLEND_ALPHA) {
+			cb[i].blendEnable = i == 0;
+			cb[i].srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+			cb[i].dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+			cb[i].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+			cb[i].colorWriteMask = i == 0 ? 0xf : 0;
+		}
+	}
 	VkPipelineColorBlendStateCreateInfo blend = {
 		.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
 		.attachmentCount = (uint32_t)d->color_count,

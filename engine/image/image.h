@@ -50,6 +50,11 @@ int aa_image_encode_png(const struct aa_image_rgba8 *img, uint8_t **data, size_t
 int aa_image_read_rgba8(const char *path, struct aa_image_rgba8 *out, struct aa_error *err);
 int aa_image_read_rgbaf(const char *path, struct aa_image_rgbaf *out, int *channels_in_file,
 			struct aa_error *err);
+/* An image file held in memory (embedded in a glTF file), as aa_image_read_rgba8 reads files: PNG through
+ * libpng from memory; other formats through OpenImageIO, from a temporary file named with the extension
+ * `hint` ("jpg"). name is for messages. */
+int aa_image_decode_rgba8(const void *data, size_t size, const char *name, const char *hint,
+			  struct aa_image_rgba8 *out, struct aa_error *err);
 /* Writes a float image (EXR when the path ends in .exr, otherwise as the extension says). */
 int aa_image_write_rgbaf(const char *path, const struct aa_image_rgbaf *img, struct aa_error *err);
 

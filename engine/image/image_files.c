@@ -119,6 +119,52 @@ int aa_image_read_rgba8(const char *path, struct aa_image_rgba8 *out, struct aa_
 	return rc;
 }
 
+int aa_image_decode_rgba8(const void *data, size_t size, const char *name, const char *hint,
+			  struct aa_image_rgba8 *out, struct aa_error *err)
+{
+	out->width = out->height = 0;
+	out->pixels = NULL;
+	struct aa_file_pixels px;
+	if (aa_png_memory_is_png(data, size)) {
+		if (aa_png_read_memory(data, size, name, false, &px, err))
+			return -1;
+	} else {
+		/* OpenImageIO reads files: a private temporary one, removed at once */
+		char tmp[PATH_MAX], ext[16] = "";
+		const char *dir = getenv("TMPDIR");
+		for (size_t i = 0; hint && hint[i] && i < 8; i++) /* letters and digits only */
+			if ((hint[i] >= 'a' && hint[i] <= 'z') || (hint[i] >= '0' && hint[i] <= '9'))
+				snprintf(ext + strlen(ext), sizeof ext - strlen(ext), "%s%c", ext[0] ? "" : ".", hint[i]);
+		snprintf(tmp, sizeof tmp, "%s/aalab-image-XXXXXX%s", dir && dir[0] ? dir : "/tmp", ext);
+		int fd = mkstemps(tmp, (int)strlen(ext));
+		if (fd < 0)
+			return aa_error_set(err, AA_ERR_IO, "", "cannot decode image '%s': no temporary file (%s)", name,
+					    strerror(errno));
+		bool written = write(fd, data, size) == (ssize_t)size;
+		close(fd);
+		int rc = written ? read_pixels(tmp, false, &px, err) : -1;
+		unlink(tmp);
+		if (!written)
+			return aa_error_set(err, AA_ERR_IO, "", "cannot decode image '%s': writing a temporary file failed",
+					    name);
+		if (rc) {
+			/* the message names the temporary file: name the image instead */
+			char msg[sizeof err->message];
+			snprintf(msg, sizeof msg, "%s", err->message);
+			return aa_error_set(err, err->code ? err->code : AA_ERR_IO, "", "cannot decode image '%s' (%s): %s",
+					    name, hint && hint[0] ? hint : "unknown format", msg);
+		}
+	}
+	int rc = 0;
+	if (aa_image_rgba8_alloc(out, px.width, px.height) != 0)
+		rc = aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for image '%s' (%dx%d)", name, px.width,
+				  px.height);
+	else
+		EXPAND_TO_RGBA(uint8_t, px.data, px.channels, (size_t)px.width * px.height, 255, out->pixels);
+	free(px.data);
+	return rc;
+}
+
 int aa_image_read_rgbaf(const char *path, struct aa_image_rgbaf *out, int *channels_in_file,
 			struct aa_error *err)
 {

@@ -40,6 +40,9 @@ bool aa_png_file_is_png(const char *path)
 	return png;
 }
 
+static int png_read_stream(FILE *f, const char *path, bool as_float, struct aa_file_pixels *out,
+			   struct aa_error *err);
+
 int aa_png_read(const char *path, bool as_float, struct aa_file_pixels *out, struct aa_error *err)
 {
 	memset(out, 0, sizeof *out);
@@ -48,6 +51,31 @@ int aa_png_read(const char *path, bool as_float, struct aa_file_pixels *out, str
 		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "",
 				    errno == ENOENT ? "image file '%s' does not exist" : "cannot open image '%s': %s",
 				    path, strerror(errno));
+	return png_read_stream(f, path, as_float, out, err);
+}
+
+bool aa_png_memory_is_png(const void *data, size_t size)
+{
+	return size >= 8 && png_sig_cmp((png_const_bytep)data, 0, 8) == 0;
+}
+
+int aa_png_read_memory(const void *data, size_t size, const char *name, bool as_float, struct aa_file_pixels *out,
+		       struct aa_error *err)
+{
+	memset(out, 0, sizeof *out);
+	/* libpng reads from a FILE: one over the bytes, so that files and memory share every step */
+	FILE *f = size ? fmemopen((void *)data, size, "rb") : NULL;
+	if (!f)
+		return aa_error_set(err, AA_ERR_IO, "", "cannot read PNG '%s': %s", name,
+				    size ? strerror(errno) : "no data");
+	return png_read_stream(f, name, as_float, out, err);
+}
+
+/* Reads a PNG from f (closed here); path names it in messages. */
+static int png_read_stream(FILE *f, const char *path, bool as_float, struct aa_file_pixels *out,
+			   struct aa_error *err)
+{
+	memset(out, 0, sizeof *out);
 	struct png_context ctx = {""};
 	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &ctx, png_error_to_context,
 						 png_warning_ignored);

@@ -682,7 +682,20 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	}
 	fputs("</p>\n<div class=\"cards\">\n", o);
 	summary_cards(o, &view);
-	fputs("</div>\n<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
+	fputs("</div>\n", o);
+	if (view.warning_count > 0) { /* what the scene drew differently from its files, before any number */
+		fputs("<h2 id=\"warnings\">Warnings</h2>\n<p class=\"note\">Loading the scene dropped or approximated "
+		      "these; the numbers below are for the scene as drawn.</p>\n<ul>\n", o);
+		for (int i = 0; i < view.warning_count && i < AA_MAX_WARNINGS; i++) {
+			fputs("<li>", o);
+			esc(o, view.warnings[i]);
+			fputs("</li>\n", o);
+		}
+		if (view.warnings_dropped > 0)
+			fprintf(o, "<li>... and %d more</li>\n", view.warnings_dropped);
+		fputs("</ul>\n", o);
+	}
+	fputs("<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
 	cost_table(o, &view, sum);
 	fputs("<h2 id=\"cost-chart\">GPU time against PSNR</h2>\n", o);
 	chart_cost_accuracy(o, &view, sum);

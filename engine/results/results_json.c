@@ -440,6 +440,15 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 		push(&b, plan, json_pack("{s:o, s:o, s:b}", "pass", str(r->plan[i].pass), "reason", str(r->plan[i].reason),
 					 "ran", r->plan[i].ran));
 	put(&b, root, "passes", plan);
+	json_t *warnings = json_array();
+	for (int i = 0; i < r->warning_count && i < AA_MAX_WARNINGS; i++)
+		push(&b, warnings, str(r->warnings[i]));
+	if (r->warnings_dropped > 0) {
+		char more[64];
+		snprintf(more, sizeof more, "... and %d more", r->warnings_dropped);
+		push(&b, warnings, str(more));
+	}
+	put(&b, root, "warnings", warnings);
 	put(&b, root, "reference", reference_json(&b, r));
 	for (int i = 0; i < r->method_count && i < AA_MAX_METHODS; i++)
 		push(&b, methods, method_json(&b, r, &r->methods[i]));

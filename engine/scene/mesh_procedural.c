@@ -18,9 +18,24 @@ void aa_mesh_free(struct aa_mesh *mesh)
 		return;
 	free(mesh->vertices);
 	free(mesh->indices);
+	free(mesh->skin);
 	mesh->vertices = NULL;
 	mesh->indices = NULL;
+	mesh->skin = NULL;
 	mesh->vertex_count = mesh->index_count = 0;
+}
+
+void aa_mesh_compute_bounds(struct aa_mesh *m)
+{
+	for (int k = 0; k < 3; k++) {
+		m->bounds_min[k] = m->vertex_count ? m->vertices[0].position[k] : 0.0f;
+		m->bounds_max[k] = m->bounds_min[k];
+	}
+	for (uint32_t v = 1; v < m->vertex_count; v++)
+		for (int k = 0; k < 3; k++) {
+			m->bounds_min[k] = fminf(m->bounds_min[k], m->vertices[v].position[k]);
+			m->bounds_max[k] = fmaxf(m->bounds_max[k], m->vertices[v].position[k]);
+		}
 }
 
 /* ---------------------------------------------------------------- mesh builder */
@@ -57,6 +72,9 @@ static uint32_t mb_vertex(struct mb *b, mat4 xf, vec3 p, vec3 n, float u, float 
 	out->position[0] = wp.x, out->position[1] = wp.y, out->position[2] = wp.z;
 	out->normal[0] = wn.x, out->normal[1] = wn.y, out->normal[2] = wn.z;
 	out->uv[0] = u, out->uv[1] = v;
+	out->tangent[0] = 1.0f, out->tangent[1] = out->tangent[2] = 0.0f, out->tangent[3] = 1.0f; /* no normal maps */
+	for (int c = 0; c < 4; c++)
+		out->color[c] = 1.0f;
 	return m->vertex_count++;
 }
 
@@ -606,19 +624,10 @@ int aa_mesh_from_json(struct sj *s, const json_t *spec, const char *base_dir, ui
 	    sj_enum(s, spec, "type", aa_mesh_type_names, 0, &type))
 		return -1;
 	const char *name = aa_mesh_type_names[type];
-	if (strcmp(name, "file") == 0) {
-		static const char *const keys[] = {"type", "path", NULL};
-		char rel[512], full[4096];
-		size_t mark;
-		if (sj_check_keys(s, spec, keys) || sj_require(s, spec, "path") ||
-		    sj_string(s, spec, "path", "", rel, sizeof rel))
-			return -1;
-		mark = sj_push_key(s, "path");
-		int rc = sj_resolve_file(s, base_dir, rel, full, sizeof full) ||
-			 aa_mesh_load_file(s, full, rel, max_triangles, out);
-		sj_pop(s, mark);
-		return rc ? -1 : 0;
-	}
+	(void)base_dir; /* file meshes are loaded by the scene loader (mesh_file.c), which adds their parts */
+	out->part_count = 1;
+	out->file_material = -1;
+	out->rig = -1;
 	const struct mesh_type *mt = NULL;
 	for (size_t i = 0; i < sizeof mesh_types / sizeof mesh_types[0]; i++)
 		if (strcmp(mesh_types[i].name, name) == 0)
@@ -640,5 +649,6 @@ int aa_mesh_from_json(struct sj *s, const json_t *spec, const char *base_dir, ui
 		aa_mesh_free(out);
 		return sj_fail(s, AA_ERR_INVALID, "this %s mesh has no triangles (is it too small?)", name);
 	}
+	aa_mesh_compute_bounds(out);
 	return 0;
 }

@@ -11,9 +11,7 @@ extern const char *const aa_mesh_type_names[];
 
 void aa_mesh_free(struct aa_mesh *mesh);
 
-/* mesh_file.c: imports a glTF/OBJ file through assimp, all meshes merged into one with node transforms
- * applied. Errors are set at the current path of s; `shown` is the file name as the scene wrote it. */
-int aa_mesh_load_file(struct sj *s, const char *path, const char *shown, uint64_t max_triangles,
-		      struct aa_mesh *out);
+/* bounds_min/bounds_max from the vertices. */
+void aa_mesh_compute_bounds(struct aa_mesh *mesh);
 
 #endif

@@ -18,9 +18,15 @@
 #define AA_SCENE_MAX_FILE_BYTES (4u << 20)      /* scene JSON text */
 #define AA_SCENE_MAX_TRIANGLES 1000000u         /* drawn per scene (each object counts its mesh) */
 #define AA_SCENE_MAX_OBJECTS 4096
-#define AA_SCENE_MAX_MESHES 256
-#define AA_SCENE_MAX_MATERIALS 256
-#define AA_SCENE_MAX_TEXTURES 32
+#define AA_SCENE_MAX_MESHES 256               /* meshes a scene file defines or writes inline */
+#define AA_SCENE_MAX_MATERIALS 256            /* materials a scene file defines (+1 implicit default) */
+#define AA_SCENE_MAX_TEXTURES 32              /* textures a scene file defines */
+/* What mesh files may add on top: each file material and each part (one per material) of a file mesh. */
+#define AA_SCENE_MAX_ALL_MESHES 2048
+#define AA_SCENE_MAX_ALL_MATERIALS 1024
+#define AA_SCENE_MAX_ALL_TEXTURES 256
+#define AA_SCENE_MAX_DRAWS 16384              /* objects after each is split into its parts */
+#define AA_SCENE_MAX_WARNINGS 32
 #define AA_SCENE_MAX_LIGHTS 8
 #define AA_SCENE_MAX_PATHS 32
 #define AA_SCENE_MAX_KEYS 256                   /* keys per camera path */
@@ -32,6 +38,15 @@ struct aa_vertex {
 	float position[3];
 	float normal[3];
 	float uv[2];
+	float tangent[4];  /* xyz: the surface direction of +u, w: handedness (bitangent = w * normal x tangent,
+			    * toward the top of the image); for normal maps */
+	float color[4];    /* linear RGBA vertex colour: 1 where the mesh has none */
+};
+
+/* Up to four joints per vertex of a skinned mesh: indices into its rig's joints, weights summing to 1. */
+struct aa_skin_weights {
+	uint16_t joints[4];
+	float weights[4];
 };
 
 struct aa_mesh {
@@ -40,6 +55,16 @@ struct aa_mesh {
 	uint32_t vertex_count;
 	uint32_t *indices; /* triangle list */
 	uint32_t index_count;
+	float bounds_min[3], bounds_max[3]; /* of the positions, in the mesh's own space */
+	/* Mesh files: a file mesh is split into parts, one per material; the first part of a file says how
+	 * many follow (part_count, 1 for other meshes) and each part names its file material (-1: none, the
+	 * scene's default). */
+	int part_count;
+	int file_material;
+	/* Skinned or animated parts: per-vertex joints into the rig scene->rigs[rig]; NULL and -1 otherwise.
+	 * Vertices are then in the rig's bind space, and posed on the CPU every frame (aa_rig_pose). */
+	struct aa_skin_weights *skin;
+	int rig;
 };
 
 /* Decoded RGBA8 texture in sRGB encoding (as image files store colour), with a full mip chain so the
@@ -50,6 +75,8 @@ struct aa_texture {
 	int width, height;
 	int mip_levels;
 	uint8_t **mips; /* mip_levels pointers, each w_i*h_i*4 bytes */
+	bool linear;      /* data, not colour (normal, metallic-roughness and occlusion maps): stored and
+			   * filtered as is, not sRGB-decoded */
 };
 
 enum aa_pattern {
@@ -57,6 +84,21 @@ enum aa_pattern {
 	AA_PATTERN_CHECKER,  /* procedural in the shader: alternating base_color/color2, `scale` cells per uv unit */
 	AA_PATTERN_STRIPES,  /* procedural: stripes along u, `scale` per uv unit, `stripe_width` fraction of color2 */
 	AA_PATTERN_TEXTURE,  /* sampled: textures[texture_index] (image file or generated text) */
+};
+
+/* The textures a material may sample besides its base colour (texture_index), for file materials. */
+enum aa_material_map {
+	AA_MAP_BASE = 0,       /* texture_index: sRGB base colour (alpha: coverage) */
+	AA_MAP_EMISSIVE,       /* sRGB emitted colour, times `emissive` */
+	AA_MAP_NORMAL,         /* tangent-space normal (linear) */
+	AA_MAP_METAL_ROUGH,    /* linear: green = roughness, blue = metalness (glTF) */
+	AA_MAP_OCCLUSION,      /* linear: red = ambient occlusion */
+	AA_MAP_COUNT
+};
+
+enum aa_shading_model {
+	AA_SHADING_BLINN_PHONG = 0, /* scene materials: Lambert + optional normalised Blinn-Phong */
+	AA_SHADING_METAL_ROUGH,     /* glTF metallic-roughness: a GGX microfacet BRDF (docs/scene-format.md) */
 };
 
 struct aa_material {
@@ -68,10 +110,24 @@ struct aa_material {
 	float stripe_width;    /* share of each stripe period in color2, (0,1) */
 	int texture_index;     /* index into scene->textures, -1 if none */
 	float specular;        /* 0 = Lambert only; >0 adds Blinn-Phong specular of this strength */
-	float roughness;       /* (0,1]: maps to the Blinn-Phong exponent */
+	float roughness;       /* (0,1]: maps to the Blinn-Phong exponent; metal_rough: perceptual roughness */
 	bool alpha_cutout;     /* fragments with alpha < alpha_cutoff are discarded (needs the alpha-test pass) */
 	float alpha_cutoff;
 	bool unlit;            /* colour is output as is, no lighting (2D patterns, emissive signs) */
+	/* Materials from mesh files (all off in scene materials; aa_material_defaults) */
+	enum aa_shading_model model;
+	float metallic;        /* metal_rough: 0 dielectric .. 1 metal */
+	float emissive[3];     /* linear emitted colour (glTF emissiveFactor x KHR_materials_emissive_strength) */
+	float normal_scale;    /* glTF normalTexture.scale */
+	float occlusion_strength;
+	int maps[AA_MAP_COUNT];/* texture per map, -1 none; maps[AA_MAP_BASE] mirrors texture_index */
+	/* KHR_texture_transform per map: uv' = (m[0] u + m[1] v + m[2], m[3] u + m[4] v + m[5]) */
+	float uv_transform[AA_MAP_COUNT][6];
+	bool uv_transformed;   /* some map's transform is not the identity */
+	bool vertex_color;     /* base colour times the mesh's vertex colours (COLOR_0) */
+	bool single_sided;     /* back faces are culled (glTF doubleSided false); scene materials are two-sided */
+	bool blend;            /* alpha blended (glTF BLEND): drawn after opaque objects, back to front */
+	char source[160];      /* where a file material came from: "assets/fox.glb: materials[0]" */
 };
 
 enum aa_light_type { AA_LIGHT_DIRECTIONAL = 0, AA_LIGHT_POINT = 1 };
@@ -98,13 +154,58 @@ struct aa_animation {
 	float pivot[3];         /* spin pivot, world space */
 };
 
+/* A rig: the node hierarchy of a mesh file, the joints its skinned parts use, and its animations. Posed
+ * on the CPU (scene_rig.c): a joint's matrix is its node's world matrix times its inverse bind matrix,
+ * as glTF defines skinning (the skinned mesh's own node transform is not used). */
+enum aa_channel_path { AA_CHANNEL_TRANSLATION, AA_CHANNEL_ROTATION, AA_CHANNEL_SCALE };
+
+struct aa_rig_channel {
+	int node;
+	enum aa_channel_path path;
+	int key_count;
+	float *times;           /* seconds, increasing */
+	float *values;          /* 3 (translation, scale) or 4 (rotation quaternion x, y, z, w) per key */
+};
+
+struct aa_rig_clip {
+	char name[AA_NAME_MAX];
+	double duration;        /* seconds: the last key's time */
+	int channel_count;
+	struct aa_rig_channel *channels;
+};
+
+struct aa_rig_node {
+	int parent;             /* index of the parent node, -1 for roots; parents come before children */
+	float translation[3], rotation[4], scale[3]; /* the rest pose, as the file gives it */
+};
+
+struct aa_rig {
+	char source[160];       /* the file, for messages */
+	int node_count;
+	struct aa_rig_node *nodes;
+	int joint_count;
+	int *joint_node;        /* per joint: its node (-1: the identity, for parts that do not move) */
+	mat4 *inverse_bind;     /* per joint */
+	int clip_count;
+	struct aa_rig_clip *clips;
+};
+
+/* An object's pose: the rig's rest pose (clip -1) or its clip at time clip_time + clip_speed * t. */
+struct aa_pose {
+	int clip;
+	double clip_time;       /* seconds into the clip at t = 0 */
+	double clip_speed;      /* clip seconds per second (0: held) */
+};
+
+/* One draw: a scene object, or one part of an object whose file mesh has several materials. */
 struct aa_object {
 	char name[AA_NAME_MAX];
 	int mesh_index;
 	int material_index;
 	mat4 transform;         /* base model matrix at t = 0 */
 	struct aa_animation animation;
-	uint32_t model_id;      /* 1-based, unique per object: methods that read IDs use it */
+	struct aa_pose pose;    /* skinned or animated mesh parts (mesh->rig >= 0) */
+	uint32_t model_id;      /* 1-based, the scene file's object index + 1: all parts of an object share it */
 };
 
 enum aa_projection { AA_PROJECTION_PERSPECTIVE = 0, AA_PROJECTION_ORTHOGRAPHIC = 1 };
@@ -158,6 +259,12 @@ struct aa_scene {
 	struct aa_object *objects; int object_count;
 	struct aa_light *lights; int light_count;
 	struct aa_camera_path *paths; int path_count; /* paths[0] is the default path */
+	struct aa_rig *rigs; int rig_count;
+	int model_count;        /* objects in the scene file (the largest model_id) */
+	/* What loading dropped or approximated, each message once (docs/scene-format.md, "Warnings") */
+	int warning_count;      /* kept; more than AA_SCENE_MAX_WARNINGS are counted in warnings_dropped */
+	int warnings_dropped;
+	char warnings[AA_SCENE_MAX_WARNINGS][256];
 };
 
 /* Finds a scene by name ("thin-wires") or path ("my/scene.json"). Names are looked up in, in order:
@@ -168,6 +275,16 @@ int aa_scene_resolve(const char *name_or_path, char *out_path, size_t out_size, 
 
 /* Lists the scene names available (caller frees each name and the array). */
 int aa_scene_list(char ***names, int *count);
+
+/* What `aalab scenes` shows of a scene file, read without building its meshes or textures. */
+struct aa_scene_summary {
+	char name[AA_NAME_MAX];
+	char description[256];
+	int path_count;
+	char paths[AA_SCENE_MAX_PATHS][AA_NAME_MAX];
+	int object_count;
+};
+int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa_error *err);
 
 /* Loads and validates a scene file. Errors name the file, the JSON path ("objects[2].mesh.radius") and
  * what is wrong. Relative mesh/texture paths resolve against the scene file's directory and may not
@@ -190,9 +307,20 @@ void aa_camera_path_eval(const struct aa_camera_path *path, bool hold_first, dou
 
 /* Model matrix of an object at time t (base transform with its animation applied). */
 mat4 aa_object_model_matrix(const struct aa_object *object, double t);
-bool aa_scene_has_animation(const struct aa_scene *scene);
-bool aa_scene_has_cutout(const struct aa_scene *scene);
+bool aa_scene_has_animation(const struct aa_scene *scene); /* objects move or skinned parts are animated */
+bool aa_object_is_animated(const struct aa_scene *scene, const struct aa_object *object);
+bool aa_scene_has_cutout(const struct aa_scene *scene);   /* some object draws with a cut-out material */
 bool aa_scene_has_shadow_caster_light(const struct aa_scene *scene);
+/* Adds a warning (formatted once; a message already held is not repeated). */
+void aa_scene_warn(struct aa_scene *scene, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The defaults of a scene material (docs/scene-format.md): grey, Lambert, two-sided, no maps. */
+void aa_material_defaults(struct aa_material *m);
+
+/* Poses a rig at time t for an object: world matrices of every joint times its inverse bind matrix
+ * (joint_count matrices), in the rig's space (the object's model matrix goes on top). */
+void aa_rig_pose(const struct aa_rig *rig, const struct aa_pose *pose, double t, mat4 *joint_matrices);
+/* Skins a mesh part with joint matrices: positions, normals and tangents into out (vertex_count). */
+void aa_mesh_skin(const struct aa_mesh *mesh, const mat4 *joint_matrices, struct aa_vertex *out);
 uint64_t aa_scene_triangle_count(const struct aa_scene *scene);
 size_t aa_scene_bytes(const struct aa_scene *scene); /* CPU bytes held by meshes and textures */
 

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "mesh_file.h"
 #include "mesh_procedural.h"
 #include "scene_json.h"
 #include "texture.h"
@@ -148,12 +149,15 @@ void aa_scene_free(struct aa_scene *scene)
 		aa_texture_free(&scene->textures[i]);
 	for (int i = 0; i < scene->path_count; i++)
 		free(scene->paths[i].keys);
+	for (int i = 0; i < scene->rig_count; i++)
+		aa_rig_free(&scene->rigs[i]);
 	free(scene->meshes);
 	free(scene->textures);
 	free(scene->materials);
 	free(scene->objects);
 	free(scene->lights);
 	free(scene->paths);
+	free(scene->rigs);
 	free(scene);
 }
 
@@ -163,8 +167,10 @@ struct loader {
 	struct sj s;
 	const char *base_dir;
 	struct aa_scene *sc;
-	const json_t *materials, *meshes, *textures; /* the name maps, for lookups and "(materials: ...)" */
-	int default_material;                       /* -1 until an object needs it */
+	const json_t *materials, *meshes, *textures, *objects; /* the name maps, for lookups and "(materials: ...)" */
+	int *named_mesh;                             /* per entry of "meshes": its first mesh (file parts follow) */
+	int default_material;                        /* -1 until an object needs it */
+	int object_cap;
 	size_t texture_bytes;
 	uint64_t triangles;                          /* drawn so far */
 };
@@ -232,6 +238,17 @@ static int load_textures(struct loader *L)
 	return 0;
 }
 
+void aa_material_defaults(struct aa_material *m)
+{
+	*m = (struct aa_material){.name = "default", .base_color = {0.6f, 0.6f, 0.6f, 1}, .scale = {8, 8},
+				  .stripe_width = 0.5f, .texture_index = -1, .roughness = 0.5f, .alpha_cutoff = 0.5f,
+				  .normal_scale = 1.0f, .occlusion_strength = 1.0f};
+	for (int k = 0; k < AA_MAP_COUNT; k++) {
+		m->maps[k] = -1;
+		m->uv_transform[k][0] = m->uv_transform[k][4] = 1.0f; /* identity */
+	}
+}
+
 static int read_material(struct loader *L, const json_t *o, struct aa_material *m)
 {
 	static const char *const keys[] = {"color", "pattern", "color2", "scale", "stripe_width", "texture",
@@ -243,6 +260,7 @@ static int read_material(struct loader *L, const json_t *o, struct aa_material *
 	const json_t *tex = json_object_get(o, "texture");
 	float c2[4];
 	int pattern;
+	aa_material_defaults(m);
 	if (sj_check_keys(s, o, keys) ||
 	    sj_enum(s, o, "pattern", patterns, tex ? AA_PATTERN_TEXTURE : AA_PATTERN_NONE, &pattern) ||
 	    sj_color(s, o, "color", tex ? white : grey, true, m->base_color) ||
@@ -268,9 +286,13 @@ static int read_material(struct loader *L, const json_t *o, struct aa_material *
 			sj_list_keys(L->textures, list, sizeof list);
 			return sj_fail_key(s, "texture", AA_ERR_INVALID, "unknown texture '%s' (textures: %s)", name, list);
 		}
+		m->maps[AA_MAP_BASE] = m->texture_index;
 	} else if (pattern == AA_PATTERN_TEXTURE) {
 		return sj_fail_key(s, "pattern", AA_ERR_INVALID, "pattern 'texture' needs a 'texture' name");
 	}
+	/* the base texture's transform is its scale, which shadow cut-outs read like file materials' */
+	m->uv_transform[AA_MAP_BASE][0] = m->scale[0];
+	m->uv_transform[AA_MAP_BASE][4] = m->scale[1];
 	return 0;
 }
 
@@ -299,37 +321,112 @@ static int load_materials(struct loader *L)
 	return 0;
 }
 
-static int load_named_meshes(struct loader *L)
+/* A mesh slot at the end of sc->meshes (procedural meshes take one, files one per part). */
+static int mesh_slot(struct loader *L)
 {
 	struct aa_scene *sc = L->sc;
+	if (sc->mesh_count >= AA_SCENE_MAX_ALL_MESHES)
+		return sj_fail(&L->s, AA_ERR_LIMIT, "more than %d meshes (file meshes count one per material)",
+			       AA_SCENE_MAX_ALL_MESHES);
+	struct aa_mesh *grown = realloc(sc->meshes, (size_t)(sc->mesh_count + 1) * sizeof *grown);
+	if (!grown)
+		return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
+	sc->meshes = grown;
+	memset(&sc->meshes[sc->mesh_count], 0, sizeof *sc->meshes);
+	return sc->mesh_count;
+}
+
+/* Whether any object draws the named mesh `name` with the file's own materials (no "material"). */
+static bool named_mesh_keeps_materials(struct loader *L, const char *name)
+{
+	size_t i;
+	const json_t *o;
+	json_array_foreach(L->objects, i, o) {
+		const json_t *mesh = json_object_get(o, "mesh");
+		if (json_is_string(mesh) && strcmp(json_string_value(mesh), name) == 0 && !json_object_get(o, "material"))
+			return true;
+	}
+	return false;
+}
+
+/* {"type": "file", "path": ..., "missing_files": "error" | "warn"}: the file's parts (and materials,
+ * when an object keeps them) appended to the scene; *first is the first part. */
+static int load_file_mesh(struct loader *L, const json_t *spec, bool keep_materials, uint64_t max_triangles,
+			  int *first)
+{
+	static const char *const keys[] = {"type", "path", "missing_files", NULL};
+	static const char *const missing_modes[] = {"error", "warn", NULL};
+	struct sj *s = &L->s;
+	char rel[512], full[4096];
+	int missing;
+	if (sj_check_keys(s, spec, keys) || sj_require(s, spec, "path") || sj_string(s, spec, "path", "", rel, sizeof rel) ||
+	    sj_enum(s, spec, "missing_files", missing_modes, 0, &missing))
+		return -1;
+	struct aa_mesh_file_options options = {.materials = keep_materials, .missing_warn = missing == 1};
+	size_t mark = sj_push_key(s, "path");
+	if (sj_resolve_file(s, L->base_dir, rel, full, sizeof full))
+		return -1;
+	*first = aa_mesh_file_load(s, L->sc, full, rel, L->base_dir, &options, max_triangles);
+	if (*first < 0)
+		return -1;
+	sj_pop(s, mark);
+	return 0;
+}
+
+static bool is_file_spec(const json_t *spec)
+{
+	const json_t *type = json_object_get(spec, "type");
+	return json_is_object(spec) && json_is_string(type) && strcmp(json_string_value(type), "file") == 0;
+}
+
+/* A procedural mesh spec into a new slot. */
+static int load_procedural_mesh(struct loader *L, const json_t *spec, uint64_t max_triangles, int *index)
+{
+	int slot = mesh_slot(L);
+	if (slot < 0 || aa_mesh_from_json(&L->s, spec, L->base_dir, max_triangles, &L->sc->meshes[slot]))
+		return -1;
+	*index = L->sc->mesh_count++;
+	return 0;
+}
+
+static int load_named_meshes(struct loader *L)
+{
 	const char *key;
 	json_t *v;
+	int n = 0;
+	if (!(L->named_mesh = calloc(json_object_size(L->meshes) + 1, sizeof *L->named_mesh)))
+		return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
 	size_t mark = sj_push_key(&L->s, "meshes");
 	json_object_foreach((json_t *)L->meshes, key, v) {
-		struct aa_mesh *m = &sc->meshes[sc->mesh_count];
 		size_t m2 = sj_push_key(&L->s, key);
-		if (aa_mesh_from_json(&L->s, v, L->base_dir, AA_SCENE_MAX_TRIANGLES, m))
+		int first;
+		if (is_file_spec(v) ? load_file_mesh(L, v, named_mesh_keeps_materials(L, key), AA_SCENE_MAX_TRIANGLES, &first)
+				    : load_procedural_mesh(L, v, AA_SCENE_MAX_TRIANGLES, &first))
 			return -1;
-		sc->mesh_count++;
-		snprintf(m->name, sizeof m->name, "%s", key);
+		L->named_mesh[n++] = first;
+		if (!is_file_spec(v))
+			snprintf(L->sc->meshes[first].name, sizeof L->sc->meshes[first].name, "%s", key);
 		sj_pop(&L->s, m2);
 	}
 	sj_pop(&L->s, mark);
 	return 0;
 }
 
-/* "mesh": a name from "meshes", a bare type name ("sphere": defaults) or an inline spec object. */
+/* "mesh": a name from "meshes", a bare type name ("sphere": defaults) or an inline spec object. *index is
+ * its first mesh; file meshes have more parts after it (meshes[*index].part_count). */
 static int object_mesh(struct loader *L, const json_t *o, int *index)
 {
 	struct sj *s = &L->s;
-	struct aa_scene *sc = L->sc;
 	const json_t *spec = json_object_get(o, "mesh");
 	json_t *tmp = NULL;
 	char list[300], got[64];
 	if (json_is_string(spec)) {
 		const char *name = json_string_value(spec);
-		if ((*index = map_index(L->meshes, name)) >= 0)
+		int named = map_index(L->meshes, name);
+		if (named >= 0) {
+			*index = L->named_mesh[named];
 			return 0;
+		}
 		bool is_type = false;
 		for (int i = 0; aa_mesh_type_names[i]; i++)
 			is_type |= strcmp(name, aa_mesh_type_names[i]) == 0 && strcmp(name, "file") != 0;
@@ -344,40 +441,47 @@ static int object_mesh(struct loader *L, const json_t *o, int *index)
 		return sj_fail_key(s, "mesh", AA_ERR_INVALID, "expected a mesh name or a mesh object, got %s",
 				   sj_describe(spec, got, sizeof got));
 	}
-	if (sc->mesh_count >= AA_SCENE_MAX_MESHES) {
+	if (L->sc->mesh_count >= AA_SCENE_MAX_MESHES + (int)json_object_size(L->meshes) && !is_file_spec(spec)) {
 		json_decref(tmp);
 		return sj_fail_key(s, "mesh", AA_ERR_LIMIT, "more than %d meshes: share meshes through \"meshes\"",
 				   AA_SCENE_MAX_MESHES);
 	}
 	size_t mark = sj_push_key(s, "mesh");
-	int rc = aa_mesh_from_json(s, spec, L->base_dir, AA_SCENE_MAX_TRIANGLES - L->triangles,
-				   &sc->meshes[sc->mesh_count]);
+	uint64_t left = AA_SCENE_MAX_TRIANGLES - L->triangles;
+	int rc = is_file_spec(spec) ? load_file_mesh(L, spec, !json_object_get(o, "material"), left, index)
+				    : load_procedural_mesh(L, spec, left, index);
 	json_decref(tmp);
 	if (rc)
 		return -1;
 	sj_pop(s, mark);
-	*index = sc->mesh_count++;
 	return 0;
 }
 
-static int object_material(struct loader *L, const json_t *o, int *index)
+/* The scene's material named "default", or a plain grey one made for objects that name none. */
+static int default_material(struct loader *L)
 {
 	struct aa_scene *sc = L->sc;
-	char name[AA_NAME_MAX], list[300];
-	if (!json_object_get(o, "material")) {
-		/* No material named: a shared plain grey "default" (or the scene's own "default"). */
-		if ((*index = map_index(L->materials, "default")) >= 0)
-			return 0;
-		if (L->default_material < 0) {
-			struct aa_material *m = &sc->materials[sc->material_count];
-			*m = (struct aa_material){.name = "default", .base_color = {0.6f, 0.6f, 0.6f, 1},
-						  .scale = {8, 8}, .stripe_width = 0.5f, .texture_index = -1,
-						  .roughness = 0.5f, .alpha_cutoff = 0.5f};
-			L->default_material = sc->material_count++;
-		}
-		*index = L->default_material;
-		return 0;
+	int named = map_index(L->materials, "default");
+	if (named >= 0)
+		return named;
+	if (L->default_material < 0) {
+		struct aa_material *grown = realloc(sc->materials, (size_t)(sc->material_count + 1) * sizeof *grown);
+		if (!grown)
+			return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
+		sc->materials = grown;
+		aa_material_defaults(&sc->materials[sc->material_count]);
+		L->default_material = sc->material_count++;
 	}
+	return L->default_material;
+}
+
+/* The scene material an object names for all its parts, or -1 when it names none. */
+static int object_material(struct loader *L, const json_t *o, int *index)
+{
+	char name[AA_NAME_MAX], list[300];
+	*index = -1;
+	if (!json_object_get(o, "material"))
+		return 0;
 	if (sj_string(&L->s, o, "material", "", name, sizeof name))
 		return -1;
 	if ((*index = map_index(L->materials, name)) < 0) {
@@ -392,13 +496,54 @@ static void set3(float out[3], vec3 v)
 	out[0] = v.x, out[1] = v.y, out[2] = v.z;
 }
 
-static int object_animation(struct sj *s, const json_t *a, vec3 position, struct aa_animation *an)
+/* "clip", "time", "speed": a mesh file's animation (its rig) at time + speed * t. */
+static int object_clip(struct loader *L, const json_t *a, int mesh, struct aa_pose *pose)
 {
-	static const char *const keys[] = {"velocity", "oscillate", "spin", NULL};
+	struct sj *s = &L->s;
+	struct aa_scene *sc = L->sc;
+	char name[AA_NAME_MAX], list[400] = "";
+	double time, speed;
+	pose->clip = -1;
+	if (sj_number(s, a, "time", SJ_CLOSED(-1e6, 1e6), 0.0, &time) ||
+	    sj_number(s, a, "speed", SJ_CLOSED(-1e3, 1e3), 1.0, &speed))
+		return -1;
+	pose->clip_time = time;
+	pose->clip_speed = speed;
+	if (!json_object_get(a, "clip")) {
+		if (json_object_get(a, "time") || json_object_get(a, "speed"))
+			return sj_fail_key(s, json_object_get(a, "time") ? "time" : "speed", AA_ERR_INVALID,
+					   "needs 'clip', the name of an animation of the mesh file");
+		return 0;
+	}
+	if (sj_string(s, a, "clip", "", name, sizeof name))
+		return -1;
+	int rig = -1;
+	for (int k = 0; k < sc->meshes[mesh].part_count && rig < 0; k++)
+		rig = sc->meshes[mesh + k].rig;
+	if (rig < 0 || sc->rigs[rig].clip_count == 0)
+		return sj_fail_key(s, "clip", AA_ERR_INVALID, "this object's mesh has no animations (only mesh files with "
+				   "skins or animated nodes have)");
+	const struct aa_rig *r = &sc->rigs[rig];
+	for (int c = 0; c < r->clip_count; c++) {
+		if (strcmp(r->clips[c].name, name) == 0) {
+			pose->clip = c;
+			return 0;
+		}
+		snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", c ? ", " : "", r->clips[c].name);
+	}
+	return sj_fail_key(s, "clip", AA_ERR_INVALID, "unknown animation '%s' (the mesh file has: %s)", name, list);
+}
+
+static int object_animation(struct loader *L, const json_t *a, vec3 position, int mesh, struct aa_animation *an,
+			    struct aa_pose *pose)
+{
+	static const char *const keys[] = {"velocity", "oscillate", "spin", "clip", "time", "speed", NULL};
 	static const char *const osc_keys[] = {"axis", "amplitude", "frequency", NULL};
 	static const char *const spin_keys[] = {"axis", "degrees_per_second", "pivot", NULL};
+	struct sj *s = &L->s;
 	vec3 zero = v3(0, 0, 0), axis, velocity, pivot = position;
-	if (sj_check_keys(s, a, keys) || sj_vec3(s, a, "velocity", SJ_CLOSED(-1e4, 1e4), zero, &velocity))
+	if (sj_check_keys(s, a, keys) || sj_vec3(s, a, "velocity", SJ_CLOSED(-1e4, 1e4), zero, &velocity) ||
+	    object_clip(L, a, mesh, pose))
 		return -1;
 	set3(an->velocity, velocity);
 	const json_t *osc = json_object_get(a, "oscillate"), *spin = json_object_get(a, "spin");
@@ -434,18 +579,53 @@ static int object_animation(struct sj *s, const json_t *a, vec3 position, struct
 	return 0;
 }
 
-static int read_object(struct loader *L, const json_t *o, int index, struct aa_object *obj)
+/* One draw per part of the object's mesh (one for procedural meshes). */
+static int add_draws(struct loader *L, const struct aa_object *proto, int first_mesh, int override)
+{
+	struct aa_scene *sc = L->sc;
+	int parts = sc->meshes[first_mesh].part_count > 0 ? sc->meshes[first_mesh].part_count : 1;
+	if (sc->object_count + parts > AA_SCENE_MAX_DRAWS)
+		return sj_fail(&L->s, AA_ERR_LIMIT, "the scene draws more than %d objects and mesh parts",
+			       AA_SCENE_MAX_DRAWS);
+	if (sc->object_count + parts > L->object_cap) {
+		int cap = 2 * (sc->object_count + parts);
+		struct aa_object *grown = realloc(sc->objects, (size_t)cap * sizeof *grown);
+		if (!grown)
+			return sj_fail(&L->s, AA_ERR_INTERNAL, "out of memory");
+		sc->objects = grown;
+		L->object_cap = cap;
+	}
+	for (int k = 0; k < parts; k++) {
+		const struct aa_mesh *m = &sc->meshes[first_mesh + k];
+		struct aa_object *o = &sc->objects[sc->object_count];
+		*o = *proto;
+		o->mesh_index = first_mesh + k;
+		o->material_index = override >= 0 ? override : m->file_material >= 0 ? m->file_material : default_material(L);
+		if (o->material_index < 0)
+			return -1;
+		sc->object_count++;
+		L->triangles += m->index_count / 3;
+	}
+	if (L->triangles > AA_SCENE_MAX_TRIANGLES)
+		return sj_fail(&L->s, AA_ERR_LIMIT, "the scene draws more than %u triangles, the limit",
+			       (unsigned)AA_SCENE_MAX_TRIANGLES);
+	return 0;
+}
+
+static int read_object(struct loader *L, const json_t *o, int index)
 {
 	static const char *const keys[] = {"name", "mesh", "material", "position", "rotation", "scale", "animation", NULL};
 	static const float one[3] = {1, 1, 1};
 	struct sj *s = &L->s;
+	struct aa_object obj = {.pose = {.clip = -1}};
 	char def_name[32];
 	vec3 pos, rot;
 	float scale[3];
+	int mesh, override;
 	snprintf(def_name, sizeof def_name, "object%d", index);
-	if (sj_check_keys(s, o, keys) || sj_string(s, o, "name", def_name, obj->name, sizeof obj->name) ||
-	    sj_require(s, o, "mesh") || object_mesh(L, o, &obj->mesh_index) ||
-	    object_material(L, o, &obj->material_index) || sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &pos) ||
+	if (sj_check_keys(s, o, keys) || sj_string(s, o, "name", def_name, obj.name, sizeof obj.name) ||
+	    sj_require(s, o, "mesh") || object_material(L, o, &override) || object_mesh(L, o, &mesh) ||
+	    sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &pos) ||
 	    sj_vec3(s, o, "rotation", SJ_CLOSED(-3600, 3600), v3(0, 0, 0), &rot) ||
 	    sj_floats_or_scalar(s, o, "scale", 3, SJ_CLOSED(1e-4, 1e5), one, scale))
 		return -1;
@@ -453,20 +633,16 @@ static int read_object(struct loader *L, const json_t *o, int index, struct aa_o
 	const float d2r = 3.14159265358979f / 180.0f;
 	mat4 r = mat4_mul(mat4_rotate(v3(0, 0, 1), rot.z * d2r),
 			  mat4_mul(mat4_rotate(v3(0, 1, 0), rot.y * d2r), mat4_rotate(v3(1, 0, 0), rot.x * d2r)));
-	obj->transform = mat4_mul(mat4_translate(pos), mat4_mul(r, mat4_scale(v3(scale[0], scale[1], scale[2]))));
-	obj->model_id = (uint32_t)index + 1;
+	obj.transform = mat4_mul(mat4_translate(pos), mat4_mul(r, mat4_scale(v3(scale[0], scale[1], scale[2]))));
+	obj.model_id = (uint32_t)index + 1;
 	const json_t *anim = json_object_get(o, "animation");
 	if (anim) {
 		size_t mark = sj_push_key(s, "animation");
-		if (object_animation(s, anim, pos, &obj->animation))
+		if (object_animation(L, anim, pos, mesh, &obj.animation, &obj.pose))
 			return -1;
 		sj_pop(s, mark);
 	}
-	L->triangles += L->sc->meshes[obj->mesh_index].index_count / 3;
-	if (L->triangles > AA_SCENE_MAX_TRIANGLES)
-		return sj_fail(s, AA_ERR_LIMIT, "the scene draws more than %u triangles, the limit",
-			       (unsigned)AA_SCENE_MAX_TRIANGLES);
-	return 0;
+	return add_draws(L, &obj, mesh, override);
 }
 
 static int load_objects(struct loader *L, const json_t *objects)
@@ -485,24 +661,23 @@ static int load_objects(struct loader *L, const json_t *objects)
 	if (n > AA_SCENE_MAX_OBJECTS)
 		return sj_fail_key(s, "objects", AA_ERR_LIMIT, "%zu objects is over the limit of %d", n,
 				   AA_SCENE_MAX_OBJECTS);
-	int named = map_size(L, L->meshes, "meshes", AA_SCENE_MAX_MESHES);
-	if (named < 0)
+	L->objects = objects;
+	if (map_size(L, L->meshes, "meshes", AA_SCENE_MAX_MESHES) < 0)
 		return -1;
-	/* Room for the named meshes plus one inline mesh per object (capped at the mesh limit). */
-	size_t mesh_slots = (size_t)named + n < AA_SCENE_MAX_MESHES ? (size_t)named + n : AA_SCENE_MAX_MESHES;
-	if (!(sc->meshes = calloc(mesh_slots, sizeof *sc->meshes)) || !(sc->objects = calloc(n, sizeof *sc->objects)))
+	L->object_cap = (int)n;
+	if (!(sc->objects = calloc(n, sizeof *sc->objects)))
 		return sj_fail(s, AA_ERR_INTERNAL, "out of memory");
 	if (load_named_meshes(L))
 		return -1;
 	size_t mark = sj_push_key(s, "objects");
 	for (size_t i = 0; i < n; i++) {
 		size_t m2 = sj_push_index(s, i);
-		if (read_object(L, json_array_get(objects, i), (int)i, &sc->objects[i]))
+		if (read_object(L, json_array_get(objects, i), (int)i))
 			return -1;
-		sc->object_count++;
 		sj_pop(s, m2);
 	}
 	sj_pop(s, mark);
+	sc->model_count = (int)n;
 	return 0;
 }
 
@@ -621,6 +796,7 @@ static int load_json(json_t *root, const char *display, const char *base_dir, co
 	snprintf(L.sc->file, sizeof L.sc->file, "%s", file ? file : "");
 	int rc = load_root(&L, root, stem);
 	json_decref(root);
+	free(L.named_mesh);
 	if (rc) {
 		aa_scene_free(L.sc);
 		return -1;
@@ -670,4 +846,48 @@ int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
 	char dir[PATH_MAX];
 	snprintf(dir, sizeof dir, "%s", path);
 	return load_json(root, path, dirname(dir), path, out, err);
+}
+
+/* ---------------------------------------------------------------- a summary without meshes */
+
+int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa_error *err)
+{
+	struct stat st;
+	json_error_t je;
+	memset(out, 0, sizeof *out);
+	if (stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+		return aa_error_set(err, AA_ERR_NOT_FOUND, "", "scene file '%s' not found", path);
+	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
+				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
+	json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
+	if (!root)
+		return json_error(err, path, &je);
+	struct sj s;
+	sj_init(&s, path, err);
+	char stem[AA_NAME_MAX];
+	const char *b = strrchr(path, '/');
+	snprintf(stem, sizeof stem, "%s", b ? b + 1 : path);
+	if (ends_with(stem, ".json"))
+		stem[strlen(stem) - 5] = '\0';
+	int rc = sj_expect_object(&s, root) || sj_string(&s, root, "name", stem, out->name, sizeof out->name) ||
+		 sj_string(&s, root, "description", "", out->description, sizeof out->description);
+	const json_t *paths = json_object_get(root, "paths");
+	if (rc == 0 && paths && !json_is_array(paths))
+		rc = sj_fail_key(&s, "paths", AA_ERR_INVALID, "expected an array of camera paths");
+	for (size_t i = 0; rc == 0 && i < json_array_size(paths) && i < AA_SCENE_MAX_PATHS; i++) {
+		char def[16];
+		snprintf(def, sizeof def, "path%zu", i);
+		size_t mark = sj_push_key(&s, "paths");
+		sj_push_index(&s, i);
+		rc = sj_expect_object(&s, json_array_get(paths, i)) ||
+		     sj_string(&s, json_array_get(paths, i), "name", def, out->paths[i], sizeof out->paths[i]);
+		sj_pop(&s, mark);
+		out->path_count += rc == 0;
+	}
+	if (rc == 0 && !paths)
+		snprintf(out->paths[out->path_count++], sizeof out->paths[0], "main");
+	out->object_count = (int)json_array_size(json_object_get(root, "objects"));
+	json_decref(root);
+	return rc ? -1 : 0;
 }

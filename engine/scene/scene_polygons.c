@@ -61,6 +61,8 @@ int aa_scene_from_polygons(const struct aa_polygon2d *polys, int poly_count, int
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	}
 	sc->mesh_count = sc->material_count = sc->object_count = sc->path_count = 1;
+	m->part_count = 1;
+	m->file_material = m->rig = -1;
 
 	/* One mesh: each convex polygon as a fan, turned to face the camera (+z) whichever way it winds. */
 	snprintf(m->name, sizeof m->name, "polygons");
@@ -78,6 +80,9 @@ int aa_scene_from_polygons(const struct aa_polygon2d *polys, int poly_count, int
 			v->position[0] = w.x, v->position[1] = w.y, v->position[2] = w.z;
 			v->normal[2] = 1.0f;
 			v->uv[0] = (float)(p->xy[k][0] / width), v->uv[1] = (float)(p->xy[k][1] / height);
+			v->tangent[0] = v->tangent[3] = 1.0f;
+			for (int c = 0; c < 4; c++)
+				v->color[c] = 1.0f;
 		}
 		for (int k = 1; k + 1 < p->count; k++) {
 			uint32_t b = first + (uint32_t)k, c = first + (uint32_t)k + 1;
@@ -87,7 +92,9 @@ int aa_scene_from_polygons(const struct aa_polygon2d *polys, int poly_count, int
 		}
 	}
 
+	aa_mesh_compute_bounds(m);
 	struct aa_material *mat = sc->materials;
+	aa_material_defaults(mat);
 	snprintf(mat->name, sizeof mat->name, "foreground");
 	memcpy(mat->base_color, fg, 3 * sizeof(float));
 	mat->base_color[3] = 1.0f;
@@ -103,6 +110,8 @@ int aa_scene_from_polygons(const struct aa_polygon2d *polys, int poly_count, int
 	snprintf(o->name, sizeof o->name, "polygons");
 	o->transform = mat4_identity();
 	o->model_id = 1;
+	o->pose.clip = -1;
+	sc->model_count = 1;
 
 	/* Orthographic, ortho_height = height: with a width:height viewport the view spans x in
 	 * [-w/2, w/2], y in [-h/2, h/2] around the image centre, which is world [0,w] x [-h,0]. */

@@ -1,6 +1,9 @@
 /* Questions the renderer and the frame plan ask of a scene: where an object is at time t, and which
  * effects (motion, cut-outs, shadows) the scene calls for. */
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "scene.h"
 
@@ -30,12 +33,39 @@ mat4 aa_object_model_matrix(const struct aa_object *object, double t)
 	return mat4_mul(mat4_translate(move), m);
 }
 
+bool aa_object_is_animated(const struct aa_scene *scene, const struct aa_object *object)
+{
+	if (object->animation.active)
+		return true;
+	const struct aa_mesh *m = &scene->meshes[object->mesh_index];
+	if (m->rig < 0 || object->pose.clip < 0 || object->pose.clip_speed == 0.0)
+		return false;
+	const struct aa_rig_clip *clip = &scene->rigs[m->rig].clips[object->pose.clip];
+	return clip->channel_count > 0 && clip->duration > 0;
+}
+
 bool aa_scene_has_animation(const struct aa_scene *scene)
 {
 	for (int i = 0; i < scene->object_count; i++)
-		if (scene->objects[i].animation.active)
+		if (aa_object_is_animated(scene, &scene->objects[i]))
 			return true;
 	return false;
+}
+
+void aa_scene_warn(struct aa_scene *scene, const char *fmt, ...)
+{
+	char msg[sizeof scene->warnings[0]];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	for (int i = 0; i < scene->warning_count; i++)
+		if (strcmp(scene->warnings[i], msg) == 0)
+			return;
+	if (scene->warning_count < AA_SCENE_MAX_WARNINGS)
+		memcpy(scene->warnings[scene->warning_count++], msg, sizeof msg);
+	else
+		scene->warnings_dropped++;
 }
 
 bool aa_scene_has_cutout(const struct aa_scene *scene)

@@ -115,11 +115,18 @@ static uint8_t encode_unorm(float v)
 int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int width, int height,
 			  struct aa_error *err)
 {
+	return aa_texture_from_rgba8_data(out, pixels, width, height, false, err);
+}
+
+int aa_texture_from_rgba8_data(struct aa_texture *out, const uint8_t *pixels, int width, int height, bool linear,
+			       struct aa_error *err)
+{
 	if (width < 1 || height < 1 || width > AA_TEXTURE_MAX_SIZE || height > AA_TEXTURE_MAX_SIZE)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "texture is %dx%d; each side must be 1 to %d texels", width,
 				    height, AA_TEXTURE_MAX_SIZE);
 	out->width = width;
 	out->height = height;
+	out->linear = linear;
 	out->mip_levels = aa_texture_mip_count(width, height);
 	out->mips = calloc((size_t)out->mip_levels, sizeof *out->mips);
 	size_t n0 = (size_t)width * height;
@@ -135,8 +142,8 @@ int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int wid
 	}
 	memcpy(out->mips[0], pixels, n0 * 4);
 	float lut[256];
-	for (int i = 0; i < 256; i++)
-		lut[i] = aa_srgb_to_linear((float)i / 255.0f);
+	for (int i = 0; i < 256; i++) /* data maps (normals, roughness) are averaged as stored */
+		lut[i] = linear ? (float)i / 255.0f : aa_srgb_to_linear((float)i / 255.0f);
 	for (size_t i = 0; i < n0; i++) {
 		float a = (float)pixels[i * 4 + 3] / 255.0f;
 		for (int c = 0; c < 3; c++)
@@ -156,7 +163,8 @@ int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int wid
 		for (size_t i = 0; i < (size_t)nw * nh; i++) {
 			float a = next[i * 4 + 3];
 			for (int c = 0; c < 3; c++)
-				dst[i * 4 + c] = encode_srgb(a > 1e-6f ? next[i * 4 + c] / a : 0.0f);
+				dst[i * 4 + c] = linear ? encode_unorm(a > 1e-6f ? next[i * 4 + c] / a : 0.0f)
+						       : encode_srgb(a > 1e-6f ? next[i * 4 + c] / a : 0.0f);
 			dst[i * 4 + 3] = encode_unorm(a);
 		}
 		float *t = cur;

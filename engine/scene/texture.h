@@ -14,6 +14,9 @@ size_t aa_texture_bytes(int width, int height);
  * (colour weighted by alpha, so cut-out edges do not darken). */
 int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int width, int height,
 			  struct aa_error *err);
+/* The same for colour (linear false) or for data such as normal maps (linear: stored and filtered as is). */
+int aa_texture_from_rgba8_data(struct aa_texture *out, const uint8_t *pixels, int width, int height, bool linear,
+			       struct aa_error *err);
 
 /* Renders text with the 5x7 font: each dot becomes scale x scale texels, glyphs sit in 6x8-dot cells,
  * `padding` dots of background surround the text; '\n' starts a new line (lines centred when `center`).
