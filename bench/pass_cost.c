@@ -133,7 +133,7 @@ int main(int argc, char **argv)
 	static struct aa_method_result infos[AA_MAX_METHODS];
 	struct aa_method_state *states[AA_MAX_METHODS];
 	for (int m = 0; m < spec.method_count; m++)
-		if (spec.methods[m].method->create(r, &spec.methods[m].params, &infos[m], &states[m], &err))
+		if (aa_method_create(spec.methods[m].method, r, &spec.methods[m].params, &infos[m], &states[m], &err))
 			return fail(spec.methods[m].label, &err);
 
 	struct aa_frame_ctx ctx = {0};

@@ -100,6 +100,15 @@ void aa_print_results_table(json_t *results, FILE *out);
 int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,
 		  bool print_json, bool quiet);
 
+/* method_files.c: the method and shader files of the job's user methods (docs/user-methods.md), read
+ * from disk into a JSON object name -> text (*files NULL when the job has none); with compile, their
+ * shaders are compiled here first. -1 after printing why. */
+int aa_job_user_files(const char *cmd, const json_t *job, bool compile, json_t **files);
+/* The payload of submit: nothing, the scene file alone (format "scene"), or a bundle {"files", "scene"}
+ * (format "bundle") when there are user method files. *payload is malloc'ed. */
+int aa_submit_payload(json_t *files, const char *scene, size_t scene_size, char **payload, size_t *size,
+		      const char **format);
+
 /* table.c: the cost-vs-accuracy table and progress display */
 void aa_print_table(const struct aa_job_result *r, FILE *out);
 void aa_progress_update(int done, int total, const char *what);

@@ -12,6 +12,7 @@
 #include "aa.h"
 #include "client.h"
 #include "farm.h"
+#include "methods/user_method.h"
 #include "out_dir.h"
 #include "results/results.h"
 #include "results/shard_results.h"
@@ -119,6 +120,8 @@ int cmd_run(int argc, char **argv)
 	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
 	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false;
 	struct aa_out_dir od = {0};
+	struct aa_job_spec spec;
+	bool spec_parsed = false;
 	int status = AA_EXIT_USAGE, c, idx;
 	optind = 1;
 	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
@@ -143,14 +146,18 @@ int cmd_run(int argc, char **argv)
 	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
 	if (!job)
 		goto out;
-	struct aa_job_spec spec;
 	struct aa_error err = {0};
-	int rc = aa_job_spec_from_json(job, &spec, &err);
+	/* user methods read their method and shader files from here (docs/user-methods.md) */
+	int rc = aa_job_spec_from_json_files(job, &aa_file_source_disk, &spec, &err);
 	if (rc) {
 		aa_print_error("run", &err);
 		json_decref(job);
 		goto out;
 	}
+	spec_parsed = true;
+	bool user_methods = false;
+	for (int i = 0; i < spec.method_count; i++)
+		user_methods |= aa_method_is_user(spec.methods[i].method);
 	/* A shard is the job's frames [begin, end) after its warm-up; its results.json names the whole job */
 	struct aa_job_spec whole = spec;
 	int shard_index = 0, shard_count = 0;
@@ -166,10 +173,12 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	/* A running aalabd does the work when one answers (or --connect names one). --local and --device run
-	 * here, and so does a scene given as a file path: the daemon takes scene names only. */
+	 * here, and so does a scene given as a file path: the daemon takes scene names only. User methods run
+	 * here unless --connect names a daemon: their files are on this machine, and a daemon runs them only
+	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device && !shard_text;
+	bool remote = !local && !device && !shard_text && (!user_methods || connect);
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;
 		aa_job_case(&spec, i, &one);
@@ -215,6 +224,15 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	json_decref(job);
+	/* a shader that does not compile is bad input: said before the scene is loaded and the device opened */
+	for (int i = 0; i < spec.method_count; i++) {
+		struct aa_user_method *um = (struct aa_user_method *)aa_user_method_of(spec.methods[i].method);
+		if (um && aa_user_method_compile(um, &err)) {
+			fprintf(stderr, "aalab run: methods[%d]: %s\n", i, err.message);
+			status = err.code == AA_ERR_INVALID ? AA_EXIT_USAGE : AA_EXIT_FAILED;
+			goto out;
+		}
+	}
 
 	struct aa_engine *engine;
 	struct aa_engine_options eo = {.device = device};
@@ -277,6 +295,8 @@ int cmd_run(int argc, char **argv)
 out:
 	if (status != AA_EXIT_OK)
 		aa_out_dir_discard(&od); /* half a result is no result; DIR stays as it was */
+	if (spec_parsed)
+		aa_job_spec_release(&spec);
 	json_decref(overrides);
 	return status;
 }

@@ -18,14 +18,32 @@ static const char submit_help[] =
 	"--watch follows the job until it ends. ADDRESS is unix:PATH or tcp:HOST:PORT (default\n"
 	"$AALAB_CONNECT, then $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock).\n";
 
-/* Submits and returns the reply (NULL if the connection failed). */
-static json_t *submit(struct aa_conn *c, json_t *job, const char *scene, size_t scene_size)
+/* Submits and returns the reply (NULL if the connection failed, or the payload could not be made). With
+ * user methods in the job, their files go with it (and are compiled here first). */
+static json_t *submit(struct aa_conn *c, const char *cmd, json_t *job, const char *scene, size_t scene_size,
+		      int *status)
 {
+	json_t *files;
+	char *payload;
+	size_t size;
+	const char *format;
+	*status = AA_EXIT_FAILED;
+	if (aa_job_user_files(cmd, job, true, &files)) {
+		*status = AA_EXIT_USAGE;
+		return NULL;
+	}
+	int rc = aa_submit_payload(files, scene, scene_size, &payload, &size, &format);
+	json_decref(files);
+	if (rc) {
+		*status = AA_EXIT_USAGE;
+		return NULL;
+	}
 	json_t *msg = json_pack("{ss sO}", "op", "submit", "job", job);
-	if (scene)
-		json_object_set_new(msg, "payload_format", json_string("scene"));
-	int rc = aa_conn_send(c, msg, scene, scene_size);
+	if (format)
+		json_object_set_new(msg, "payload_format", json_string(format));
+	rc = aa_conn_send(c, msg, payload, size);
 	json_decref(msg);
+	free(payload);
 	return rc ? NULL : aa_conn_read(c, NULL, NULL);
 }
 
@@ -93,9 +111,10 @@ int cmd_submit(int argc, char **argv)
 		status = AA_EXIT_FAILED;
 		goto out;
 	}
-	json_t *r = submit(conn, job, scene, scene_size);
+	int failed;
+	json_t *r = submit(conn, "submit", job, scene, scene_size, &failed);
 	json_decref(job);
-	status = aa_reply_status("submit", r);
+	status = r || failed != AA_EXIT_USAGE ? aa_reply_status("submit", r) : failed;
 	if (status == AA_EXIT_OK) {
 		const char *id = json_string_value(json_object_get(r, "job"));
 		if (json) {
@@ -121,8 +140,9 @@ int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *s
 {
 	if (!images)
 		json_object_set_new(job, "keep_frames", json_false());
-	json_t *r = submit(c, job, NULL, 0);
-	int status = aa_reply_status("run", r);
+	int failed;
+	json_t *r = submit(c, "run", job, NULL, 0, &failed);
+	int status = r || failed != AA_EXIT_USAGE ? aa_reply_status("run", r) : failed;
 	if (status) {
 		json_decref(r);
 		return status;

@@ -30,6 +30,7 @@ int cmd_suites(int argc, char **argv)
 			if (!json)
 				printf("%-12s %3d cases x %2d methods  %s\n%12s %s\n", names[i], aa_job_case_count(spec),
 				       spec->method_count, spec->name, "", file);
+			aa_job_spec_release(spec); /* a suite's user methods (none in the shipped suites) */
 		} else {
 			const char *why = err.message[0] ? err.message : "not a valid job file";
 			json_object_set_new(o, "error", json_string(why));

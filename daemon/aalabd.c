@@ -14,6 +14,7 @@
 
 #include "daemon.h"
 #include "jobs.h"
+#include "worker.h"
 
 static volatile sig_atomic_t got_term, got_hup;
 static struct loop *signal_loop;
@@ -231,6 +232,10 @@ static void reload(struct daemon *d, int argc, char **argv)
 		store_apply_retention(d->store);
 		pthread_mutex_unlock(&d->store->lock);
 		scene_cache_set_budget(d->store->scenes, d->cfg.scene_cache_bytes);
+		pthread_mutex_lock(&d->store->lock);
+		d->store->job_time_limit_s = d->cfg.job_time_limit_s;
+		d->store->process_scene_budget = d->cfg.scene_cache_bytes;
+		pthread_mutex_unlock(&d->store->lock);
 		fprintf(stderr, "aalabd: configuration reloaded\n");
 	}
 	sd_notifyf("READY=1");
@@ -309,6 +314,9 @@ static void on_tick(struct loop *loop, void *data)
 
 int main(int argc, char **argv)
 {
+	/* the worker process (worker_process.c): started by aalabd itself when user methods are allowed */
+	if (argc > 1 && !strcmp(argv[1], "--worker-process"))
+		return worker_process_main(argc, argv);
 	for (int i = 1; i < argc; i++)
 		if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
 			fputs(usage, stdout);
@@ -367,19 +375,35 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	store->scenes = scene_cache_create(d->cfg.scene_cache_bytes);
+	store->use_process = d->cfg.allow_user_methods;
+	store->job_time_limit_s = d->cfg.job_time_limit_s;
+	store->process_scene_budget = d->cfg.scene_cache_bytes;
+	_Static_assert(sizeof store->state_dir == sizeof d->cfg.state_dir && sizeof store->device == sizeof d->cfg.device,
+		       "the worker process gets the configuration's paths");
+	memcpy(store->state_dir, d->cfg.state_dir, sizeof store->state_dir);
+	memcpy(store->device, d->cfg.device, sizeof store->device);
 	struct aa_error aerr = {0};
 	struct aa_engine_options eo = {.device = d->cfg.device[0] ? d->cfg.device : NULL};
 	if (open_listeners(d, argc, argv, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
 		goto out;
 	}
-	if (aa_engine_create(&eo, &store->engine, &aerr)) {
+	if (store->use_process) {
+		/* user shaders may hang or crash the driver: the device is the worker process's, which the worker
+		 * thread can kill and start again (aalabd(8), allow-user-methods) */
+		if (worker_process_start(store, err, sizeof err)) {
+			fprintf(stderr, "aalabd: %s\n", err);
+			goto out;
+		}
+	} else if (aa_engine_create(&eo, &store->engine, &aerr)) {
 		fprintf(stderr, "aalabd: %s\n", aerr.message);
 		goto out;
+	} else {
+		snprintf(store->device_name, sizeof store->device_name, "%s", aa_engine_device_name(store->engine));
+		/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
+		 * engine belongs to the worker thread from here on) */
+		aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
 	}
-	/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
-	 * engine belongs to the worker thread from here on) */
-	aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
 	if (worker_start(store)) {
 		fprintf(stderr, "aalabd: cannot start the GPU worker thread\n");
 		goto out;
@@ -398,7 +422,8 @@ int main(int argc, char **argv)
 	pthread_mutex_lock(&store->lock);
 	int queued = store_count_state(store, JOB_QUEUED);
 	pthread_mutex_unlock(&store->lock);
-	fprintf(stderr, "aalabd: ready (device %s, %d jobs queued)\n", aa_engine_device_name(store->engine), queued);
+	fprintf(stderr, "aalabd: ready (device %s, %d jobs queued%s)\n", store->device_name, queued,
+		store->use_process ? ", user methods allowed: GPU work in a worker process" : "");
 	sd_notifyf("READY=1\nSTATUS=serving; %d jobs queued\nMAINPID=%ld", queued, (long)getpid());
 	status = loop_run(d->loop) == 0 ? 0 : 1;
 	worker_request_stop(store, true);
@@ -414,6 +439,8 @@ out:
 		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)
 			unlink(d->listeners[i].name);
 	}
+	if (store->process) /* the worker thread never started: the process is still this thread's */
+		worker_process_stop(store);
 	aa_engine_destroy(store->engine);
 	scene_cache_destroy(store->scenes);
 	store_close(store);

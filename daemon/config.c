@@ -38,11 +38,12 @@ void config_defaults(struct config *c)
 	c->retention_bytes = 10ull << 30;
 	c->scene_cache_bytes = 512ull << 20;
 	c->drain_timeout_s = 60;
+	c->job_time_limit_s = 3600;
 }
 
 struct key {
 	const char *name;
-	enum { K_STR, K_INT, K_SIZE, K_U64, K_DOUBLE } type;
+	enum { K_STR, K_INT, K_SIZE, K_U64, K_DOUBLE, K_BOOL } type;
 	size_t offset, size;
 	double min, max;
 };
@@ -69,6 +70,8 @@ static const struct key keys[] = {
 	NUM("scene-cache-bytes", K_U64, scene_cache_bytes, 0, 1e18),
 	NUM("drain-timeout", K_INT, drain_timeout_s, 0, 86400),
 	NUM("verbose", K_INT, verbose, 0, 3),
+	{"allow-user-methods", K_BOOL, offsetof(struct config, allow_user_methods), 0, 0, 0},
+	NUM("job-time-limit", K_INT, job_time_limit_s, 0, 86400 * 7),
 };
 
 /* Sets one option by name; used by the config file and by the command line. */
@@ -79,6 +82,16 @@ int config_set(struct config *c, const char *name, const char *value, char *err,
 		if (strcmp(k->name, name) != 0)
 			continue;
 		char *field = (char *)c + k->offset;
+		if (k->type == K_BOOL) {
+			static const char *const yes[] = {"yes", "true", "on", "1"}, *const no[] = {"no", "false", "off", "0"};
+			for (int b = 0; b < 4; b++)
+				if (!strcmp(value, yes[b]) || !strcmp(value, no[b])) {
+					*(bool *)field = !strcmp(value, yes[b]);
+					return 0;
+				}
+			snprintf(err, err_size, "%s: expected yes or no, got '%s'", name, value);
+			return -1;
+		}
 		if (k->type == K_STR) {
 			if (strlen(value) >= k->size) {
 				snprintf(err, err_size, "%s: longer than %zu bytes", name, k->size - 1);
@@ -169,4 +182,6 @@ void config_apply_reload(struct config *to, const struct config *from)
 	memcpy(to->http, keep.http, sizeof to->http);
 	memcpy(to->device, keep.device, sizeof to->device);
 	memcpy(to->config_file, keep.config_file, sizeof to->config_file);
+	/* whether GPU work runs in a worker process is decided at start-up */
+	to->allow_user_methods = keep.allow_user_methods;
 }

@@ -39,6 +39,8 @@ struct config {
 	uint64_t retention_bytes;   /* bytes of finished jobs kept */
 	uint64_t scene_cache_bytes;
 	int drain_timeout_s;        /* SIGTERM: how long the running job may take to finish */
+	bool allow_user_methods;    /* jobs may bring their own shaders; GPU work runs in a worker process */
+	int job_time_limit_s;       /* the worker process is killed when a job runs longer (0: no limit) */
 	int verbose;
 };
 

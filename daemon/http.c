@@ -93,6 +93,11 @@ static void metrics(struct daemon *d, struct response *r)
 	struct store *s = d->store;
 	struct scene_cache_stats cs;
 	scene_cache_stats(s->scenes, &cs);
+	if (s->use_process) { /* the scenes are the worker process's: as of its last job */
+		pthread_mutex_lock(&s->lock);
+		cs = s->process_scenes;
+		pthread_mutex_unlock(&s->lock);
+	}
 	char *buf = NULL;
 	size_t size = 0;
 	FILE *f = open_memstream(&buf, &size);

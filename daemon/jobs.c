@@ -12,6 +12,7 @@
 
 #include "farm.h"
 #include "jobs.h"
+#include "methods/user_method.h"
 #include "results/results.h"
 
 const char *job_state_name(enum job_state s)
@@ -61,6 +62,7 @@ void job_dir(const struct store *s, const struct job *job, char *out, size_t siz
 
 static void job_free(struct job *job)
 {
+	aa_job_spec_release(&job->spec);
 	json_decref(job->spec_json);
 	json_decref(job->summary);
 	json_decref(job->compare);
@@ -247,7 +249,19 @@ static struct job *load_job(struct store *s, const char *id)
 	json_t *spec = json_object_get(o, "spec");
 	int st = state ? state_from_name(state) : -1;
 	struct aa_error err = {0};
-	if (!job || st < 0 || !json_is_object(spec) || aa_job_spec_from_json(spec, &job->spec, &err)) {
+	/* a job's user methods are read from the files sent with it, never from elsewhere on this disk */
+	char files_path[1400];
+	snprintf(files_path, sizeof files_path, "%s/%s/method-files.json", s->dir, id);
+	json_t *files = json_load_file(files_path, 0, NULL);
+	if (!json_is_object(files)) {
+		json_decref(files);
+		files = json_object();
+	}
+	struct aa_file_source src;
+	aa_file_source_json(files, &src);
+	int bad_spec = !job || st < 0 || !json_is_object(spec) || aa_job_spec_from_json_files(spec, &src, &job->spec, &err);
+	json_decref(files);
+	if (bad_spec) {
 		fprintf(stderr, "aalabd: skipping %s: %s\n", path, err.message[0] ? err.message : "bad state or spec");
 		free(job);
 		json_decref(o);
@@ -411,7 +425,7 @@ int store_count_state(struct store *s, enum job_state st)
 }
 
 struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const char *client,
-			 const char *scene_text, size_t scene_size, struct aa_error *err)
+			 const char *scene_text, size_t scene_size, const json_t *method_files, struct aa_error *err)
 {
 	struct job *job = calloc(1, sizeof *job);
 	if (!job) {
@@ -419,6 +433,7 @@ struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const 
 		return NULL;
 	}
 	job->spec = *spec;
+	aa_job_spec_retain(&job->spec);
 	job->spec_json = aa_job_spec_to_json(spec);
 	snprintf(job->client, sizeof job->client, "%s", client);
 	job->submitted_at = now_s();
@@ -430,15 +445,20 @@ struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const 
 	job_dir(s, job, dir, sizeof dir);
 	job->inline_scene = scene_text != NULL;
 	struct aa_error werr = {0};
+	char *files_text = method_files ? json_dumps(method_files, JSON_COMPACT) : NULL;
 	if (mkdir(dir, 0750) < 0 ||
 	    (scene_text && aa_results_write_file_atomic(dir, "scene.json", scene_text, scene_size, &werr)) ||
+	    (method_files && (!files_text || aa_results_write_file_atomic(dir, "method-files.json", files_text,
+									   strlen(files_text), &werr))) ||
 	    store_save(s, job)) {
+		free(files_text);
 		aa_error_set(err, AA_ERR_IO, "", "cannot write the job to %s: %s", dir, strerror(errno));
 		pthread_mutex_unlock(&s->lock);
 		remove_tree(dir);
 		job_free(job);
 		return NULL;
 	}
+	free(files_text);
 	store_insert(s, job);
 	pthread_cond_signal(&s->work);
 	pthread_mutex_unlock(&s->lock);

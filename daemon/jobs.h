@@ -42,6 +42,11 @@ struct job {
 };
 
 struct scene_cache;
+struct worker_process;
+struct scene_cache_stats {
+	uint64_t hits, misses, reloads, evictions, bytes, budget;
+	int entries;
+};
 
 struct store {
 	pthread_mutex_t lock;
@@ -65,6 +70,15 @@ struct store {
 	uint64_t frames_rendered, jobs_finished;
 	double gpu_busy_seconds;
 	struct aa_upload_stats gpu_scenes; /* the engine's cache of uploaded scenes, after the last job */
+	/* allow-user-methods: the engine lives in a worker process the worker thread can kill (worker.h);
+	 * engine and scenes above are then unused */
+	bool use_process;
+	int job_time_limit_s;               /* job-time-limit (reloadable): the process is killed after it */
+	uint64_t process_scene_budget;      /* scene-cache-bytes, sent with each job (reloadable) */
+	char state_dir[1024], device[128];  /* for the process's command line */
+	char device_name[256];              /* what the process opened */
+	struct worker_process *process;     /* the worker thread's */
+	struct scene_cache_stats process_scenes; /* the process's scene cache, after its last job */
 };
 
 const char *job_state_name(enum job_state s);
@@ -75,9 +89,11 @@ bool job_state_known(const char *name);
  * when the daemon died are queued again to re-run from the start. */
 int store_open(struct store *s, const char *state_dir, char *err, size_t err_size);
 void store_close(struct store *s);
-/* Adds a queued job (persisted before it is visible); the caller holds no lock. */
+/* Adds a queued job (persisted before it is visible); the caller holds no lock. The job takes its own
+ * references to the spec's user methods; their files (method_files, or NULL) are kept beside job.json
+ * as method-files.json, which is where the worker process reads them from. */
 struct job *store_submit(struct store *s, const struct aa_job_spec *spec, const char *client,
-			 const char *scene_text, size_t scene_size, struct aa_error *err);
+			 const char *scene_text, size_t scene_size, const json_t *method_files, struct aa_error *err);
 struct job *store_find(struct store *s, const char *id); /* with the lock held */
 int store_count_active(struct store *s, const char *client); /* queued + running of a client, lock held */
 int store_count_state(struct store *s, enum job_state st);   /* lock held */
@@ -125,10 +141,6 @@ void scene_cache_set_budget(struct scene_cache *c, uint64_t budget_bytes);
 /* Returns a scene for file (loading it, or reloading it when the file changed since); the scene stays
  * valid until the next call. */
 const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, struct aa_error *err);
-struct scene_cache_stats {
-	uint64_t hits, misses, reloads, evictions, bytes, budget;
-	int entries;
-};
 void scene_cache_stats(struct scene_cache *c, struct scene_cache_stats *out);
 
 #endif

@@ -6,7 +6,7 @@ aalabd_SOURCES = \
 	daemon/aalabd.c daemon/daemon.h daemon/loop.h daemon/loop.c daemon/config.c daemon/listen.c \
 	daemon/conn.c daemon/protocol.c daemon/stream.c daemon/http.c daemon/http_parse.h daemon/http_parse.c \
 	daemon/protocol_parse.h daemon/protocol_parse.c \
-	daemon/jobs.h daemon/jobs.c daemon/worker.c daemon/scene_cache.c
+	daemon/jobs.h daemon/jobs.c daemon/worker.h daemon/worker.c daemon/worker_process.c daemon/scene_cache.c
 aalabd_CPPFLAGS = $(AM_CPPFLAGS) \
 	-DAA_SOURCE_WEB_DIR='"$(abs_top_srcdir)/web"' -DAA_INSTALLED_WEB_DIR='"$(pkgdatadir)/web"'
 aalabd_LDADD = $(ENGINE_LIBS)
@@ -38,7 +38,7 @@ dist_man_MANS = docs/aalab.1 docs/aalabd.8
 DAEMON_TESTS = tests/integration/daemon_protocol.py tests/integration/daemon_jobs.py \
 	tests/integration/daemon_recovery.py tests/integration/daemon_limits.py tests/integration/daemon_lockout.py \
 	tests/integration/daemon_disk.py tests/integration/daemon_config.py tests/integration/daemon_http.py \
-	tests/integration/daemon_docs.py \
+	tests/integration/daemon_docs.py tests/integration/daemon_user_methods.py \
 	tests/integration/daemon_cli.sh \
 	tests/integration/daemon_systemd.py tests/integration/protocol_example.sh \
 	tests/integration/systemd_units.sh tests/integration/dashboard.sh tests/cli_outdir.sh

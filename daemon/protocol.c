@@ -12,6 +12,7 @@
 #include "farm.h"
 #include "farm_routes.h"
 #include "jobs.h"
+#include "methods/user_method.h"
 
 void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
 {
@@ -144,42 +145,61 @@ static double method_samples(const struct aa_method_spec *m)
 	return i >= 0 && m->params.v[i] > 1 ? m->params.v[i] : 1;
 }
 
-static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payload, size_t size)
+/* A "bundle" payload: {"scene": "the scene file's text", "files": {"name": "text", ...}}, the scene (if
+ * any) and the method and shader files of the job's user methods (docs/protocol.md). */
+static json_t *parse_bundle(struct conn *c, json_t *tag, const char *payload, size_t size)
 {
-	static const char *const keys[] = {"job", NULL};
+	json_error_t jerr;
+	json_t *b = json_loadb(payload, size, JSON_REJECT_DUPLICATES, &jerr);
+	if (!json_is_object(b)) {
+		protocol_error(c, tag, "invalid", "payload", "a bundle is a JSON object {\"scene\": TEXT, \"files\": "
+			       "{NAME: TEXT}}%s%s", b ? "" : ": ", b ? "" : jerr.text);
+		json_decref(b);
+		return NULL;
+	}
+	const char *key;
+	json_t *v;
+	json_object_foreach(b, key, v) {
+		if (strcmp(key, "scene") && strcmp(key, "files")) {
+			protocol_error(c, tag, "invalid", "payload", "unknown key in the bundle; valid keys: scene, files");
+			json_decref(b);
+			return NULL;
+		}
+	}
+	json_t *scene = json_object_get(b, "scene"), *files = json_object_get(b, "files");
+	if ((scene && !json_is_string(scene)) || (files && !json_is_object(files))) {
+		protocol_error(c, tag, "invalid", scene && !json_is_string(scene) ? "payload.scene" : "payload.files",
+			       "expected the scene file's text (a string) and an object of file texts by name");
+		json_decref(b);
+		return NULL;
+	}
+	json_object_foreach(files, key, v) {
+		if (!json_is_string(v)) {
+			protocol_error(c, tag, "invalid", "payload.files", "each file is its text, a string");
+			json_decref(b);
+			return NULL;
+		}
+	}
+	return b;
+}
+
+/* Everything after the job parsed: the scene, the budget, the limits and the store. */
+static void submit_parsed(struct conn *c, json_t *tag, struct aa_job_spec *spec, const char *scene_text,
+			  size_t scene_size, const json_t *files)
+{
 	struct daemon *d = c->d;
-	if (check_keys(c, msg, tag, keys))
-		return;
-	json_t *job = json_object_get(msg, "job");
-	if (!json_is_object(job)) {
-		protocol_error(c, tag, "bad_request", "job", "expected the job object of docs/job-format.md");
-		return;
-	}
-	const char *fmt = json_string_value(json_object_get(msg, "payload_format"));
-	if (payload && (!fmt || strcmp(fmt, "scene") != 0)) {
-		protocol_error(c, tag, "bad_request", "payload_format", "a submit payload is a scene file: "
-			       "payload_format \"scene\"");
-		return;
-	}
-	struct aa_job_spec spec;
 	struct aa_error err = {0};
-	if (aa_job_spec_from_json(job, &spec, &err)) {
-		char path[300];
-		snprintf(path, sizeof path, "job%s%s", err.path[0] ? "." : "", err.path);
-		protocol_error(c, tag, aa_error_code_name(err.code), path, "%s", err.message);
-		return;
-	}
 	char file[1024];
-	if (payload && spec.is_suite) {
+	if (scene_text && spec->is_suite) {
 		protocol_error(c, tag, "invalid", "payload", "a suite names its scenes; send a scene payload with a job of "
 			       "one case");
 		return;
 	}
-	if (payload) {
+	if (scene_text) {
 		/* checked now so that a bad scene is refused with its field, not failed later in the queue */
 		struct aa_scene *scene = NULL;
-		char *text = strndup(payload, size);
-		int rc = !text || memchr(payload, 0, size) ||
+		char *text = strndup(scene_text, scene_size);
+		int rc = !text || memchr(scene_text, 0, scene_size) ||
 			 aa_scene_load_string(text, "scene", NULL, &scene, &err);
 		free(text);
 		aa_scene_free(scene);
@@ -190,21 +210,21 @@ static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payl
 				       err.message[0] ? err.message : "the scene is not text");
 			return;
 		}
-		snprintf(spec.scene, sizeof spec.scene, "inline");
+		snprintf(spec->scene, sizeof spec->scene, "inline");
 	}
 	/* every case's scene is a name the daemon knows; a suite's fields are cases[i].scene */
 	double budget = 0;
-	for (int i = 0; i < aa_job_case_count(&spec); i++) {
+	for (int i = 0; i < aa_job_case_count(spec); i++) {
 		struct aa_job_spec one;
-		aa_job_case(&spec, i, &one);
+		aa_job_case(spec, i, &one);
 		char where[64];
-		snprintf(where, sizeof where, spec.is_suite ? "job.cases[%d].scene" : "job.scene", i);
-		if (!payload && (strchr(one.scene, '/') || strstr(one.scene, ".."))) {
+		snprintf(where, sizeof where, spec->is_suite ? "job.cases[%d].scene" : "job.scene", i);
+		if (!scene_text && (strchr(one.scene, '/') || strstr(one.scene, ".."))) {
 			protocol_error(c, tag, "invalid", where, "the daemon takes scene names only (see the scenes op); "
 				       "send your own scene file as the payload of submit");
 			return;
 		}
-		if (!payload && aa_scene_resolve(one.scene, file, sizeof file, &err)) {
+		if (!scene_text && aa_scene_resolve(one.scene, file, sizeof file, &err)) {
 			protocol_error(c, tag, aa_error_code_name(err.code), where, "%s", err.message);
 			return;
 		}
@@ -220,7 +240,7 @@ static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payl
 		return;
 	}
 	struct aa_baseline baseline;
-	if (spec.baseline[0] && aa_baseline_parse(spec.baseline, &baseline, "baseline", &err) == 0 && !baseline.latest) {
+	if (spec->baseline[0] && aa_baseline_parse(spec->baseline, &baseline, "baseline", &err) == 0 && !baseline.latest) {
 		pthread_mutex_lock(&d->store->lock);
 		bool known = store_find(d->store, baseline.job) != NULL;
 		pthread_mutex_unlock(&d->store->lock);
@@ -245,12 +265,69 @@ static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payl
 		protocol_error(c, tag, "limit", "", "%d jobs are queued (max-queued-jobs); try again later", queued);
 		return;
 	}
-	struct job *j = store_submit(d->store, &spec, c->peer, payload, size, &err);
+	struct job *j = store_submit(d->store, spec, c->peer, scene_text, scene_size, files, &err);
 	if (!j) {
 		protocol_error(c, tag, aa_error_code_name(err.code), err.path, "%s", err.message);
 		return;
 	}
 	reply(c, tag, json_pack("{ss ss si}", "job", j->id, "state", "queued", "ahead", queued));
+}
+
+static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payload, size_t size)
+{
+	static const char *const keys[] = {"job", NULL};
+	struct daemon *d = c->d;
+	if (check_keys(c, msg, tag, keys))
+		return;
+	json_t *job = json_object_get(msg, "job");
+	if (!json_is_object(job)) {
+		protocol_error(c, tag, "bad_request", "job", "expected the job object of docs/job-format.md");
+		return;
+	}
+	const char *fmt = json_string_value(json_object_get(msg, "payload_format"));
+	if (payload && (!fmt || (strcmp(fmt, "scene") != 0 && strcmp(fmt, "bundle") != 0))) {
+		protocol_error(c, tag, "bad_request", "payload_format", "a submit payload is a scene file "
+			       "(payload_format \"scene\") or a bundle of a scene and method files (\"bundle\")");
+		return;
+	}
+	/* user methods run a client's shaders: only where the configuration allows, and then in the worker
+	 * process (aalabd(8), allow-user-methods) */
+	json_t *item;
+	size_t i;
+	json_array_foreach(json_object_get(job, "methods"), i, item) {
+		if (aa_job_method_is_user(item) && !d->cfg.allow_user_methods) {
+			char path[40];
+			snprintf(path, sizeof path, "job.methods[%zu]", i);
+			protocol_error(c, tag, "forbidden", path, "user methods are off on this daemon (allow-user-methods in "
+				       "aalabd(8)); run the job with aalab run --local");
+			return;
+		}
+	}
+	json_t *bundle = payload && !strcmp(fmt, "bundle") ? parse_bundle(c, tag, payload, size) : NULL;
+	if (payload && !strcmp(fmt, "bundle") && !bundle)
+		return;
+	const json_t *files = json_object_get(bundle, "files"), *scene = json_object_get(bundle, "scene");
+	const char *scene_text = bundle ? json_string_value(scene) : payload;
+	size_t scene_size = bundle ? json_string_length(scene) : size;
+	/* the files of user methods are read from the bundle only, never from this machine's disk */
+	json_t *none = json_object();
+	struct aa_file_source src;
+	aa_file_source_json(files ? files : none, &src);
+	struct aa_job_spec spec;
+	struct aa_error err = {0};
+	if (aa_job_spec_from_json_files(job, &src, &spec, &err)) {
+		char path[300];
+		snprintf(path, sizeof path, "job%s%s", err.path[0] ? "." : "", err.path);
+		protocol_error(c, tag, aa_error_code_name(err.code), path, "%s", err.message);
+	} else {
+		bool user = false;
+		for (int m = 0; m < spec.method_count; m++)
+			user |= aa_method_is_user(spec.methods[m].method);
+		submit_parsed(c, tag, &spec, scene_text, scene_size, user ? files : NULL);
+		aa_job_spec_release(&spec);
+	}
+	json_decref(none);
+	json_decref(bundle);
 }
 
 static void op_status(struct conn *c, json_t *msg, json_t *tag)

@@ -53,7 +53,8 @@ static bool name_ok(const char *s, size_t n)
 
 int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *out, size_t size)
 {
-	static const char *const top[] = {"results.json", "report.html", "events.jsonl", "scene.json", NULL};
+	static const char *const top[] = {"results.json", "report.html", "events.jsonl", "scene.json",
+					  "method-files.json", NULL};
 	/* a suite keeps each case's report and images under cases/NAME/ (docs/results-format.md) */
 	const char *inner = rel;
 	bool in_case = !strncmp(rel, "cases/", 6);
@@ -333,7 +334,7 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 	}
 	if (job_file_path(c->d->store->dir, id, file, path, sizeof path)) {
 		protocol_error(c, tag, "invalid", "file", "not a file of a job: results.json, report.html, events.jsonl, "
-			       "scene.json, frames|diff|flip/NAME/NNNN.png or linear/NAME/NNNN.rgba16f");
+			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png or linear/NAME/NNNN.rgba16f");
 		return;
 	}
 	char *data;

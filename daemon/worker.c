@@ -1,6 +1,8 @@
 /* The GPU worker thread: owns the engine (the Vulkan device) and the scene cache, takes queued jobs one
- * at a time, runs them through aa_job_run_scene, writes their results under the job directory and
- * turns engine events into the job's event log. The event loop never waits for it. */
+ * at a time, runs them (every case of a suite) through aa_suite_run, writes their results under the job directory and
+ * turns engine events into the job's event log. The event loop never waits for it. With user methods
+ * allowed, the engine lives in a worker process instead (worker_process.c) and this thread runs each job
+ * there, relaying its events; the bookkeeping here is the same for both. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,56 +12,29 @@
 
 #include "farm.h"
 #include "jobs.h"
+#include "methods/user_method.h"
+#include "worker.h"
 #include "loop.h"
 #include "results/results.h"
 
-struct run_ctx {
-	struct store *s;
-	struct job *job;
-	char dir[1200];
-	FILE *log;                /* events.jsonl */
-	int done;
+/* The engine side of a job: renders it into its directory and hands each event to a sink, the job's log
+ * in this thread or the worker process's pipe to this thread (worker_process.c). */
+struct render_ctx {
+	const struct aa_job_spec *spec; /* the whole job: a suite's events name their case from it */
+	const char *dir;
+	struct scene_cache *scenes;
+	bool inline_scene;
+	long total;               /* units of work: per case frames x (1 + methods x repeats) */
+	int done;                 /* frame events so far */
+	const struct worker_sink *sink;
 	int failed_writes;
 	struct aa_error write_err;
 };
-
-static double now_s(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_REALTIME, &ts);
-	return ts.tv_sec + ts.tv_nsec / 1e9;
-}
 
 /* JSON has no NaN or Infinity: undefined numbers are null. */
 static json_t *num(double v)
 {
 	return isfinite(v) ? json_real(v) : json_null();
-}
-
-/* Gives the event its sequence number, logs it and wakes the event loop. Returns non-zero when the job
- * must stop. */
-static int publish(struct run_ctx *ctx, json_t *ev, bool final)
-{
-	struct store *s = ctx->s;
-	json_object_set_new(ev, "job", json_string(ctx->job->id));
-	pthread_mutex_lock(&s->lock);
-	json_object_set_new(ev, "seq", json_integer((json_int_t)ctx->job->event_count + 1));
-	/* seq starts again at 1 when a job runs again (after a crash): run tells a resuming client */
-	json_object_set_new(ev, "run", json_integer((json_int_t)ctx->job->run));
-	char *line = json_dumps(ev, JSON_COMPACT);
-	if (line && ctx->log)
-		fprintf(ctx->log, "%s\n", line);
-	if (line)
-		store_append_event(s, ctx->job, line);
-	if (final)
-		ctx->job->log_complete = true;
-	if (ctx->done > ctx->job->done) /* status never says less than the last frame event did */
-		ctx->job->done = ctx->done;
-	int stop = ctx->job->cancel;
-	pthread_mutex_unlock(&s->lock);
-	json_decref(ev);
-	loop_wake(s->loop);
-	return stop;
 }
 
 static json_t *started_event(const struct aa_job_result *r)
@@ -83,12 +58,12 @@ static json_t *started_event(const struct aa_job_result *r)
 }
 
 /* A suite's events name their case; its images live in the case's folder (cases/NAME/...). */
-static void add_case(const struct job *job, const struct aa_event *ev, json_t *o)
+static void add_case(const struct aa_job_spec *spec, const struct aa_event *ev, json_t *o)
 {
-	if (!job->spec.is_suite)
+	if (!spec->is_suite)
 		return;
 	char id[512];
-	aa_case_id(&job->spec, ev->case_index, id, sizeof id);
+	aa_case_id(spec, ev->case_index, id, sizeof id);
 	json_object_set_new(o, "case", json_string(id));
 	json_object_set_new(o, "case_index", json_integer(ev->case_index));
 	if (ev->type != AA_EVENT_JOB_STARTED && ev->result) { /* the case's size: raw frames streamed need it */
@@ -96,24 +71,24 @@ static void add_case(const struct job *job, const struct aa_event *ev, json_t *o
 		json_object_set_new(o, "height", json_integer(ev->result->spec.height));
 	}
 	if (ev->type == AA_EVENT_JOB_STARTED)
-		json_object_set_new(o, "cases", json_integer(job->spec.case_count));
+		json_object_set_new(o, "cases", json_integer(spec->case_count));
 }
 
-static void case_path(const struct job *job, const struct aa_event *ev, char *rel, size_t size)
+static void case_path(const struct aa_job_spec *spec, const struct aa_event *ev, char *rel, size_t size)
 {
 	char dir[600], inner[512];
-	aa_case_relpath(&job->spec, ev->case_index, dir, sizeof dir);
+	aa_case_relpath(spec, ev->case_index, dir, sizeof dir);
 	if (!dir[0])
 		return;
 	snprintf(inner, sizeof inner, "%s", rel);
 	snprintf(rel, size, "%s/%s", dir, inner);
 }
 
-static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
+static json_t *frame_event(struct render_ctx *ctx, const struct aa_event *ev)
 {
 	char rel[1200];
 	json_t *o;
-	bool images = ctx->job->spec.keep_frames;
+	bool images = ctx->spec->keep_frames;
 	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
 		const struct aa_reference_frame *rf = &ev->result->reference.frames[ev->frame_ordinal];
 		o = json_pack("{ss ss si si sf so}", "event", "reference_frame", "method", "reference", "frame",
@@ -139,57 +114,45 @@ static json_t *frame_event(struct run_ctx *ctx, const struct aa_event *ev)
 		if (images) {
 			char diff[1200];
 			aa_results_frame_relpath("diff", m->label, ev->frame_ordinal, diff, sizeof diff);
-			case_path(ctx->job, ev, diff, sizeof diff);
+			case_path(ctx->spec, ev, diff, sizeof diff);
 			json_object_set_new(o, "diff", json_string(diff));
 		}
 	}
-	case_path(ctx->job, ev, rel, sizeof rel);
-	add_case(ctx->job, ev, o);
+	case_path(ctx->spec, ev, rel, sizeof rel);
+	add_case(ctx->spec, ev, o);
 	if (images)
 		json_object_set_new(o, "image", json_string(rel));
-	if (images && ctx->job->spec.linear_frames) {
+	if (images && ctx->spec->linear_frames) {
 		const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference"
 									  : ev->result->methods[ev->method_index].label;
 		aa_results_linear_relpath(label, ev->frame_ordinal, rel, sizeof rel);
-		case_path(ctx->job, ev, rel, sizeof rel);
+		case_path(ctx->spec, ev, rel, sizeof rel);
 		json_object_set_new(o, "linear", json_string(rel));
 	}
 	json_object_set_new(o, "done", json_integer(++ctx->done));
-	json_object_set_new(o, "total", json_integer(ctx->job->total));
+	json_object_set_new(o, "total", json_integer(ctx->total));
 	return o;
 }
 
 static int on_event(const struct aa_event *ev, void *user)
 {
-	struct run_ctx *ctx = user;
-	struct store *s = ctx->s;
+	struct render_ctx *ctx = user;
+	const struct worker_sink *sink = ctx->sink;
 	switch (ev->type) {
 	case AA_EVENT_JOB_STARTED: {
 		json_t *o = started_event(ev->result);
-		add_case(ctx->job, ev, o);
-		return publish(ctx, o, false);
+		add_case(ctx->spec, ev, o);
+		return sink->event(sink->ctx, o);
 	}
 	case AA_EVENT_REFERENCE_FRAME:
 	case AA_EVENT_METHOD_FRAME:
-		if (ctx->job->spec.keep_frames &&
-		    aa_suite_write_event_images(ctx->dir, &ctx->job->spec, ev, &ctx->write_err)) {
+		if (ctx->spec->keep_frames && aa_suite_write_event_images(ctx->dir, ctx->spec, ev, &ctx->write_err)) {
 			ctx->failed_writes++;
 			return 1; /* stored results must be complete; a failed write fails the job */
 		}
-		if (ev->type == AA_EVENT_METHOD_FRAME) {
-			pthread_mutex_lock(&s->lock);
-			s->frames_rendered++;
-			pthread_mutex_unlock(&s->lock);
-		}
-		return publish(ctx, frame_event(ctx, ev), false);
+		return sink->event(sink->ctx, frame_event(ctx, ev));
 	case AA_EVENT_PROGRESS:
-		pthread_mutex_lock(&s->lock);
-		if (ev->done > ctx->job->done)
-			ctx->job->done = ev->done;
-		ctx->job->total = ev->total;
-		int stop = ctx->job->cancel;
-		pthread_mutex_unlock(&s->lock);
-		return stop;
+		return sink->progress(sink->ctx, ev->done, ev->total);
 	default:
 		return 0;
 	}
@@ -231,69 +194,141 @@ static json_t *summarize(const json_t *results)
 	return out;
 }
 
-static const struct aa_scene *find_scene(struct store *s, struct job *job, const char *scene_name, const char *dir,
-					 char *file, size_t size, struct aa_error *err)
+static double now_s(void)
 {
-	if (!job->inline_scene) {
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+static const struct aa_scene *find_scene(struct scene_cache *scenes, const char *scene_name, bool inline_scene,
+					 const char *dir, char *file, size_t size, struct aa_error *err)
+{
+	if (!inline_scene) {
 		if (aa_scene_resolve(scene_name, file, size, err))
 			return NULL;
 	} else if ((size_t)snprintf(file, size, "%s/scene.json", dir) >= size) {
 		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
 		return NULL;
 	}
-	return scene_cache_get(s->scenes, file, err);
+	return scene_cache_get(scenes, file, err);
 }
 
 /* Each case's scene, from the scene cache (aa_suite_run asks once per case). */
 static const struct aa_scene *case_scene(const struct aa_job_spec *c, void *user, struct aa_error *err)
 {
-	struct run_ctx *ctx = user;
+	struct render_ctx *ctx = user;
 	char file[1400];
-	return find_scene(ctx->s, ctx->job, c->scene, ctx->dir, file, sizeof file, err);
+	return find_scene(ctx->scenes, c->scene, ctx->inline_scene, ctx->dir, file, sizeof file, err);
 }
 
-static void run_job(struct store *s, struct job *job)
+void worker_render(struct aa_engine *engine, struct scene_cache *scenes, const struct aa_job_spec *spec,
+		   bool inline_scene, const char *dir, const struct worker_sink *sink, struct worker_outcome *out)
 {
-	struct run_ctx ctx = {.s = s, .job = job};
-	job_dir(s, job, ctx.dir, sizeof ctx.dir);
-	store_clear_results(s, job);
-	char path[1400], file[1400] = "";
-	snprintf(path, sizeof path, "%s/events.jsonl", ctx.dir);
-	ctx.log = fopen(path, "w");
-
-	struct aa_error err = {0};
+	struct render_ctx ctx = {.spec = spec, .dir = dir, .scenes = scenes, .inline_scene = inline_scene,
+				 .sink = sink, .total = aa_suite_total_units(spec)};
+	char file[1400] = "";
+	memset(out, 0, sizeof *out);
 	struct aa_suite_result *result = NULL;
 	double t0 = now_s();
-	int rc = aa_suite_run(s->engine, &job->spec, case_scene, &ctx, on_event, &ctx, &result, &err);
-	double busy = now_s() - t0;
+	int rc = aa_suite_run(engine, spec, case_scene, &ctx, on_event, &ctx, &result, &out->err);
+	out->busy = now_s() - t0;
 	if (rc && ctx.failed_writes)
-		err = ctx.write_err;
-	json_t *summary = NULL;
+		out->err = ctx.write_err;
 	if (rc == 0) {
 		/* the scenes came from the cache: say which file each case used */
 		for (int i = 0; i < result->case_count; i++) {
 			struct aa_error ignored = {0};
-			if (job->inline_scene)
+			if (inline_scene)
 				snprintf(file, sizeof file, "scene.json");
 			else if (aa_scene_resolve(result->cases[i]->spec.scene, file, sizeof file, &ignored))
 				file[0] = '\0';
 			snprintf(result->cases[i]->scene_file, sizeof result->cases[i]->scene_file, "%.1000s", file);
 		}
 		json_t *results = aa_suite_results_to_json(result);
-		summary = summarize(results);
+		out->summary = summarize(results);
 		json_decref(results);
-		if (aa_suite_results_write(result, ctx.dir, &err))
+		if (aa_suite_results_write(result, dir, &out->err))
 			rc = -1;
 	}
 	aa_suite_result_free(result);
-	/* the verdict against the job's baseline, ready before anyone can see the job done */
-	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
+	out->rc = rc;
+	out->failed_writes = ctx.failed_writes;
+}
 
-	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !ctx.failed_writes);
+/* ---------------------------------------------------------------- the job's bookkeeping */
+
+/* Gives the event its sequence number, logs it and wakes the event loop. Returns non-zero when the job
+ * must stop. */
+int worker_publish(struct worker_run *run, json_t *ev, bool final)
+{
+	struct store *s = run->s;
+	json_object_set_new(ev, "job", json_string(run->job->id));
+	pthread_mutex_lock(&s->lock);
+	json_object_set_new(ev, "seq", json_integer((json_int_t)run->job->event_count + 1));
+	/* seq starts again at 1 when a job runs again (after a crash): run tells a resuming client */
+	json_object_set_new(ev, "run", json_integer((json_int_t)run->job->run));
+	const char *type = json_string_value(json_object_get(ev, "event"));
+	if (type && !strcmp(type, "method_frame"))
+		s->frames_rendered++;
+	json_t *done = json_object_get(ev, "done");
+	if (json_is_integer(done) && json_integer_value(done) > run->job->done) /* status never says less */
+		run->job->done = (int)json_integer_value(done);
+	char *line = json_dumps(ev, JSON_COMPACT);
+	if (line && run->log)
+		fprintf(run->log, "%s\n", line);
+	if (line)
+		store_append_event(s, run->job, line);
+	if (final)
+		run->job->log_complete = true;
+	int stop = run->job->cancel;
+	pthread_mutex_unlock(&s->lock);
+	json_decref(ev);
+	loop_wake(s->loop);
+	return stop;
+}
+
+int worker_progress(struct worker_run *run, int done, int total)
+{
+	struct store *s = run->s;
+	pthread_mutex_lock(&s->lock);
+	if (done > run->job->done)
+		run->job->done = done;
+	run->job->total = total;
+	int stop = run->job->cancel;
+	pthread_mutex_unlock(&s->lock);
+	return stop;
+}
+
+void worker_run_begin(struct store *s, struct job *job, struct worker_run *run)
+{
+	memset(run, 0, sizeof *run);
+	run->s = s;
+	run->job = job;
+	job_dir(s, job, run->dir, sizeof run->dir);
+	store_clear_results(s, job);
+	char path[1400];
+	snprintf(path, sizeof path, "%s/events.jsonl", run->dir);
+	run->log = fopen(path, "w");
+}
+
+/* The job's end, however it ran: its state, the final event, its size, job.json and retention. */
+void worker_run_end(struct worker_run *run, struct worker_outcome *out)
+{
+	struct store *s = run->s;
+	struct job *job = run->job;
+	const int rc = out->rc;
+	struct aa_error err = out->err;
+	json_t *summary = out->summary;
+	out->summary = NULL;
+	/* the verdict against the job's baseline (results.json is written by now, in this process or the
+	 * worker process), ready before anyone can see the job done */
+	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
+	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !out->failed_writes);
 	if (failed)
 		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
-	if (ctx.log)
-		fflush(ctx.log);
+	if (run->log)
+		fflush(run->log);
 	/* measured before the state changes, so that status never shows a finished job with bytes 0; the
 	 * final event's line is added when it is measured again below */
 	uint64_t bytes_so_far = store_measure(s, job);
@@ -309,7 +344,7 @@ static void run_job(struct store *s, struct job *job)
 			job->compare = json_incref(verdict);
 			json_object_set_new(ev, "compare", verdict);
 		}
-	} else if (err.code == AA_ERR_CANCELLED && !ctx.failed_writes) {
+	} else if (err.code == AA_ERR_CANCELLED && !out->failed_writes) {
 		json_decref(summary);
 		json_decref(verdict);
 		job->state = requeue ? JOB_QUEUED : JOB_CANCELLED;
@@ -327,15 +362,15 @@ static void run_job(struct store *s, struct job *job)
 	} else {
 		job->finished_at = now_s();
 	}
-	s->gpu_busy_seconds += busy;
-	s->gpu_scenes = aa_engine_upload_stats(s->engine);
+	s->gpu_busy_seconds += out->busy;
 	s->jobs_finished += !requeue;
 	pthread_mutex_unlock(&s->lock);
-	publish(&ctx, ev, true);
-	bool log_ok = ctx.log != NULL;
-	if (ctx.log) {
-		log_ok = !ferror(ctx.log) && fflush(ctx.log) == 0 && fsync(fileno(ctx.log)) == 0;
-		log_ok &= fclose(ctx.log) == 0;
+	worker_publish(run, ev, true);
+	bool log_ok = run->log != NULL;
+	if (run->log) {
+		log_ok = !ferror(run->log) && fflush(run->log) == 0 && fsync(fileno(run->log)) == 0;
+		log_ok &= fclose(run->log) == 0;
+		run->log = NULL;
 	}
 	pthread_mutex_lock(&s->lock);
 	if (!log_ok) /* the disk filled up under the log: write it again now that partial output is gone */
@@ -350,6 +385,47 @@ static void run_job(struct store *s, struct job *job)
 	store_apply_retention(s);
 	pthread_mutex_unlock(&s->lock);
 	loop_wake(s->loop);
+}
+
+/* ---------------------------------------------------------------- in this thread */
+
+static int thread_event(void *ctx, json_t *ev)
+{
+	return worker_publish(ctx, ev, false);
+}
+
+static int thread_progress(void *ctx, int done, int total)
+{
+	return worker_progress(ctx, done, total);
+}
+
+static bool has_user_methods(const struct aa_job_spec *spec)
+{
+	for (int i = 0; i < spec->method_count; i++)
+		if (aa_method_is_user(spec->methods[i].method))
+			return true;
+	return false;
+}
+
+static void run_job(struct store *s, struct job *job)
+{
+	struct worker_run run;
+	worker_run_begin(s, job, &run);
+	struct worker_outcome out = {0};
+	if (has_user_methods(&job->spec)) {
+		/* only a worker process runs a user's shaders: a job stored while they were allowed, and run after
+		 * a restart without allow-user-methods, fails rather than runs them here */
+		out.rc = -1;
+		aa_error_set(&out.err, AA_ERR_INVALID, "job.methods", "user methods are off on this daemon now "
+			     "(allow-user-methods, aalabd(8))");
+	} else {
+		struct worker_sink sink = {.event = thread_event, .progress = thread_progress, .ctx = &run};
+		worker_render(s->engine, s->scenes, &job->spec, job->inline_scene, run.dir, &sink, &out);
+	}
+	pthread_mutex_lock(&s->lock);
+	s->gpu_scenes = aa_engine_upload_stats(s->engine);
+	pthread_mutex_unlock(&s->lock);
+	worker_run_end(&run, &out);
 }
 
 static struct job *next_queued(struct store *s)
@@ -383,10 +459,17 @@ static void *worker_main(void *arg)
 		store_save(s, job);
 		pthread_mutex_unlock(&s->lock);
 		loop_wake(s->loop);
-		run_job(s, job);
+		if (s->use_process)
+			worker_process_run_job(s, job);
+		else
+			run_job(s, job);
 		pthread_mutex_lock(&s->lock);
 		s->running = NULL;
 	}
+	pthread_mutex_unlock(&s->lock);
+	if (s->use_process)
+		worker_process_stop(s);
+	pthread_mutex_lock(&s->lock);
 	s->worker_exited = true;
 	pthread_mutex_unlock(&s->lock);
 	loop_wake(s->loop);

@@ -81,8 +81,19 @@ struct aa_job_spec {
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
 void aa_job_spec_defaults(struct aa_job_spec *spec);
-/* Parses and validates a job object; every error names its field ("methods[1]", "size"). */
+/* Parses and validates a job object; every error names its field ("methods[1]", "size"). User methods
+ * ("user:file=...") are refused: they need the _files form. */
 int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa_error *err);
+/* The same, reading the method files of user methods through files (NULL: refused), and their shaders
+ * (docs/user-methods.md). The spec then holds a reference to each user method: aa_job_spec_release
+ * drops them; a copy of the spec borrows them, or takes its own with aa_job_spec_retain. */
+struct aa_file_source;
+int aa_job_spec_from_json_files(const json_t *job, const struct aa_file_source *files, struct aa_job_spec *spec,
+				struct aa_error *err);
+void aa_job_spec_release(struct aa_job_spec *spec);
+/* Whether an item of a job's "methods" names a user method ("user:file=...", {"name": "user", ...}). */
+bool aa_job_method_is_user(const json_t *method);
+void aa_job_spec_retain(const struct aa_job_spec *spec);
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
 /* Parses "WIDTHxHEIGHT" ("640x360"), each 1..AA_MAX_SIZE; errors have path "size" (the CLI's --size). */
 int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err);

@@ -180,13 +180,16 @@ static int setup(struct job_state *js, struct aa_error *err)
 		m->timed = calloc((size_t)spec->frames * (size_t)spec->timing_repeat, sizeof *m->timed);
 		if (!m->frames || !m->timed)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-		if (ms->method->create(js->renderer, &ms->params, m, &js->states[i], err)) {
+		if (aa_method_create(ms->method, js->renderer, &ms->params, m, &js->states[i], err)) {
 			aa_error_prefix(err, "%s", ms->label);
+			if (!err->path[0]) /* the job field at fault (a user method's shader that does not compile) */
+				snprintf(err->path, sizeof err->path, "methods[%d]", i);
 			return -1;
 		}
 		if (spec->timing_repeat > 1 && has_history(ms)) {
 			struct aa_method_result *scratch = calloc(1, sizeof *scratch); /* its memory is not the method's */
-			int failed = !scratch || ms->method->create(js->renderer, &ms->params, scratch, &js->twins[i], err);
+			int failed = !scratch ||
+				     aa_method_create(ms->method, js->renderer, &ms->params, scratch, &js->twins[i], err);
 			free(scratch);
 			if (failed) {
 				if (!scratch)

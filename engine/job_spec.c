@@ -8,6 +8,7 @@
 
 #include "job.h"
 #include "job_parse.h"
+#include "methods/user_method.h"
 
 /* first_frame is a frame index on the camera path; capped so first_frame + frames fits an int easily. */
 #define AA_MAX_FIRST_FRAME 10000000
@@ -188,9 +189,65 @@ static int param_value_text(const json_t *v, const char *path, char *out, size_t
 	}
 }
 
+/* {"name": "user", "params": {"file": "my_aa.json", "strength": 0.5}}: the method file first, then its
+ * parameters, each checked as in the string form. */
+static int parse_user_object(const json_t *params, const char *path, const struct aa_file_source *files,
+			     struct aa_method_spec *ms, struct aa_error *err)
+{
+	char where[300], text[AA_METHOD_TEXT_MAX], file[AA_USER_PATH_MAX];
+	snprintf(where, sizeof where, "%s.params.file", path);
+	const json_t *jfile = json_is_object(params) ? json_object_get(params, "file") : NULL;
+	if (!jfile)
+		return bad(err, AA_ERR_INVALID, where, "missing: a user method names its method file, "
+			   "{\"name\": \"user\", \"params\": {\"file\": \"my_aa.json\"}}");
+	if (get_string(jfile, where, false, file, sizeof file, err) < 0)
+		return -1;
+	if (strchr(file, ','))
+		return bad(err, AA_ERR_INVALID, where, "a method file name cannot hold ',' (it could not be written as "
+			   "a method string)");
+	struct aa_user_method *um;
+	if (aa_user_method_load(file, files, path, &um, err))
+		return -1;
+	ms->method = &um->method;
+	aa_method_defaults(ms->method, &ms->params);
+	const char *key;
+	json_t *value;
+	json_object_foreach((json_t *)params, key, value) {
+		char k[64];
+		if (!strcmp(key, "file"))
+			continue;
+		snprintf(where, sizeof where, "%s.params.%s", path, shown(key, k, sizeof k));
+		if (param_value_text(value, where, text, sizeof text, err) < 0 ||
+		    aa_method_set_param(ms->method, &ms->params, key, text, where, err) < 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* A method string that starts with "user" names a method file: "user:file=my_aa.json,strength=0.5". */
+static bool is_user_text(const char *text)
+{
+	while (isspace((unsigned char)*text))
+		text++;
+	if (strncmp(text, "user", 4))
+		return false;
+	text += 4;
+	while (isspace((unsigned char)*text))
+		text++;
+	return *text == ':' || *text == '\0';
+}
+
+bool aa_job_method_is_user(const json_t *method)
+{
+	if (json_is_string(method))
+		return is_user_text(json_string_value(method));
+	const json_t *name = json_object_get(method, "name");
+	return json_is_object(method) && json_is_string(name) && !strcmp(json_string_value(name), "user");
+}
+
 /* {"name": "ssaa", "params": {"samples": 16}} */
-static int parse_method_object(const json_t *obj, const char *path, struct aa_method_spec *ms,
-			       struct aa_error *err)
+static int parse_method_object(const json_t *obj, const char *path, const struct aa_file_source *files,
+			       struct aa_method_spec *ms, struct aa_error *err)
 {
 	char where[300], name[64], text[AA_METHOD_TEXT_MAX], known[512];
 	if (check_keys(obj, path, method_keys, err) < 0)
@@ -205,6 +262,9 @@ static int parse_method_object(const json_t *obj, const char *path, struct aa_me
 		return bad(err, AA_ERR_INVALID, where,
 			   "\"%s\" is a method string; in the object form give the bare name and put parameters in "
 			   "\"params\"", name);
+	const json_t *params = json_object_get(obj, "params");
+	if (!strcmp(name, "user"))
+		return parse_user_object(params, path, files, ms, err);
 	ms->method = aa_method_find(name);
 	if (!ms->method) {
 		aa_method_list_names(known, sizeof known);
@@ -213,7 +273,6 @@ static int parse_method_object(const json_t *obj, const char *path, struct aa_me
 	}
 	aa_method_defaults(ms->method, &ms->params);
 
-	const json_t *params = json_object_get(obj, "params");
 	if (!params)
 		return 0;
 	snprintf(where, sizeof where, "%s.params", path);
@@ -232,7 +291,8 @@ static int parse_method_object(const json_t *obj, const char *path, struct aa_me
 	return 0;
 }
 
-static int parse_methods(const json_t *v, struct aa_job_spec *s, struct aa_error *err)
+static int parse_methods(const json_t *v, const struct aa_file_source *files, struct aa_job_spec *s,
+			 struct aa_error *err)
 {
 	if (!json_is_array(v))
 		return bad(err, AA_ERR_INVALID, "methods", "expected an array of methods, got %s", type_name(v));
@@ -247,11 +307,16 @@ static int parse_methods(const json_t *v, struct aa_job_spec *s, struct aa_error
 		struct aa_method_spec *ms = &s->methods[i];
 		char path[32], label[AA_METHOD_TEXT_MAX];
 		snprintf(path, sizeof path, "methods[%zu]", i);
-		if (json_is_string(item)) {
+		ms->method = NULL; /* each slot holds a reference once parsed; see release_methods */
+		if (json_is_string(item) && is_user_text(json_string_value(item))) {
+			const char *colon = strchr(json_string_value(item), ':');
+			if (aa_user_method_parse(colon ? colon + 1 : "", files, path, &ms->method, &ms->params, err) < 0)
+				return -1;
+		} else if (json_is_string(item)) {
 			if (aa_method_parse(json_string_value(item), path, &ms->method, &ms->params, err) < 0)
 				return -1;
 		} else if (json_is_object(item)) {
-			if (parse_method_object(item, path, ms, err) < 0)
+			if (parse_method_object(item, path, files, ms, err) < 0)
 				return -1;
 		} else {
 			return bad(err, AA_ERR_INVALID, path,
@@ -264,10 +329,18 @@ static int parse_methods(const json_t *v, struct aa_job_spec *s, struct aa_error
 				   sizeof ms->label - 1);
 		memcpy(ms->label, label, strlen(label) + 1);
 		/* Equal labels mean equal parameters: the same work twice, and results that cannot be told apart. */
-		for (size_t j = 0; j < i; j++)
-			if (strcmp(s->methods[j].label, ms->label) == 0)
-				return bad(err, AA_ERR_INVALID, path,
-					   "same method and parameters as methods[%zu] (%s); list it once", j, ms->label);
+		for (size_t j = 0; j < i; j++) {
+			if (strcmp(s->methods[j].label, ms->label) != 0)
+				continue;
+			const struct aa_user_method *a = aa_user_method_of(s->methods[j].method),
+						    *b = aa_user_method_of(ms->method);
+			if (a && b && strcmp(a->sha256, b->sha256) != 0)
+				return bad(err, AA_ERR_INVALID, path, "%s and methods[%zu] (%s) are different user methods "
+					   "with the same label %s: give each method file its own \"name\"", b->file, j,
+					   a->file, ms->label);
+			return bad(err, AA_ERR_INVALID, path,
+				   "same method and parameters as methods[%zu] (%s); list it once", j, ms->label);
+		}
 	}
 	s->method_count = (int)n;
 	return 0;
@@ -346,11 +419,53 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	}
 }
 
+/* User methods hold a reference in every slot parse_methods filled; built-in methods hold none. */
+static void release_methods(struct aa_job_spec *s)
+{
+	for (int i = 0; i < AA_MAX_METHODS; i++)
+		if (aa_method_is_user(s->methods[i].method)) {
+			aa_method_unref(s->methods[i].method);
+			s->methods[i].method = NULL;
+		}
+}
+
+void aa_job_spec_release(struct aa_job_spec *spec)
+{
+	release_methods(spec);
+}
+
+void aa_job_spec_retain(const struct aa_job_spec *spec)
+{
+	for (int i = 0; i < AA_MAX_METHODS; i++)
+		aa_method_ref(spec->methods[i].method);
+}
+
+static int parse_job(const json_t *job, const struct aa_file_source *files, struct aa_job_spec *spec,
+		     struct aa_error *err);
+
 int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa_error *err)
+{
+	return aa_job_spec_from_json_files(job, NULL, spec, err);
+}
+
+int aa_job_spec_from_json_files(const json_t *job, const struct aa_file_source *files, struct aa_job_spec *spec,
+				struct aa_error *err)
 {
 	/* Parse into a copy so that a refused job leaves *spec as it was. */
 	struct aa_job_spec s;
 	aa_job_spec_defaults(&s);
+	if (parse_job(job, files, &s, err) < 0) {
+		release_methods(&s);
+		return -1;
+	}
+	*spec = s;
+	return 0;
+}
+
+static int parse_job(const json_t *job, const struct aa_file_source *files, struct aa_job_spec *spec,
+		     struct aa_error *err)
+{
+	struct aa_job_spec s = *spec;
 	if (!json_is_object(job))
 		return bad(err, AA_ERR_INVALID, "", "a job must be a JSON object, got %s",
 			   job ? type_name(job) : "nothing");
@@ -380,8 +495,11 @@ int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa
 		return -1;
 	if ((v = json_object_get(job, "reference")) && parse_reference(v, &s, err) < 0)
 		return -1;
-	if ((v = json_object_get(job, "methods")) && parse_methods(v, &s, err) < 0)
+	if ((v = json_object_get(job, "methods")) && parse_methods(v, files, &s, err) < 0) {
+		*spec = s; /* the references taken so far, for the caller to release */
 		return -1;
+	}
+	*spec = s; /* from here on every method's reference is in *spec */
 	if ((v = json_object_get(job, "keep_frames"))) {
 		if (!json_is_boolean(v))
 			return bad(err, AA_ERR_INVALID, "keep_frames", "expected true or false, got %s", type_name(v));
@@ -409,14 +527,20 @@ int aa_job_spec_from_json(const json_t *job, struct aa_job_spec *spec, struct aa
 }
 
 /* The canonical form: every field present, size as text and methods as their labels, which parse back
- * to the same parameters. */
+ * to the same parameters (user methods as "user:file=FILE,..." strings, which read the same file). */
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 {
 	char size[32];
 	snprintf(size, sizeof size, "%dx%d", spec->width, spec->height);
 	json_t *methods = json_array();
-	for (int i = 0; methods && i < spec->method_count && i < AA_MAX_METHODS; i++)
-		json_array_append_new(methods, json_string(spec->methods[i].label));
+	for (int i = 0; methods && i < spec->method_count && i < AA_MAX_METHODS; i++) {
+		/* a user method's label is its file's name; the string that reads it again names the file */
+		char text[AA_METHOD_TEXT_MAX];
+		const struct aa_method_spec *ms = &spec->methods[i];
+		if (aa_method_is_user(ms->method))
+			aa_user_method_spec_text(ms->method, &ms->params, text, sizeof text);
+		json_array_append_new(methods, json_string(aa_method_is_user(ms->method) ? text : ms->label));
+	}
 	json_t *job = json_pack("{s:s, s:s, s:s, s:i, s:i, s:{s:i}, s:o?, s:b, s:b, s:s, s:{s:i}}",
 				"scene", spec->scene, "path", spec->path, "size", size, "frames", spec->frames,
 				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,

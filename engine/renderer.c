@@ -886,7 +886,7 @@ int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *
 	    aa_gpu_layout_create(r->gpu, types, NULL, d->source_count, d->push_size, &p->pipeline, err))
 		return -1;
 	struct aa_gpu_graphics_desc g = {
-		.vert = "fullscreen.vert", .frag = d->frag, .vertex_layout = AA_VERTEX_NONE,
+		.vert = "fullscreen.vert", .frag = d->frag, .frag_code = d->frag_code, .vertex_layout = AA_VERTEX_NONE,
 		.render_pass = p->render_pass, .color_count = 1, .samples = 1, .cull = VK_CULL_MODE_NONE,
 		.blend = d->accumulate ? AA_BLEND_ADD : AA_BLEND_NONE, .layout = p->pipeline.layout,
 		.frag_specialization = d->specialization,

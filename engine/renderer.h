@@ -223,6 +223,7 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 #define AA_PASS_MAX_SOURCES 8
 struct aa_fullscreen_desc {
 	const char *frag;
+	const struct aa_shader_code *frag_code; /* instead of frag: SPIR-V made at run time (user methods) */
 	int source_count;
 	struct aa_gpu_image *sources[AA_PASS_MAX_SOURCES];
 	bool linear[AA_PASS_MAX_SOURCES]; /* bilinear, clamp-to-edge sampling instead of nearest */

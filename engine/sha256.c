@@ -1,4 +1,4 @@
-/* SHA-256 as FIPS 180-4 specifies it: 512-bit blocks, a 64-round compression, big-endian words. */
+/* SHA-256 as FIPS 180-4 specifies it: 64-byte blocks, big-endian words, the bit length last. */
 #include <stdio.h>
 #include <string.h>
 
@@ -20,23 +20,23 @@ static uint32_t rotr(uint32_t x, int n)
 	return (x >> n) | (x << (32 - n));
 }
 
-static void compress(uint32_t state[8], const uint8_t block[64])
+static void compress(struct aa_sha256 *h, const uint8_t *block)
 {
 	uint32_t w[64];
 	for (int i = 0; i < 16; i++)
-		w[i] = (uint32_t)block[4 * i] << 24 | (uint32_t)block[4 * i + 1] << 16 |
-		       (uint32_t)block[4 * i + 2] << 8 | block[4 * i + 3];
+		w[i] = (uint32_t)block[4 * i] << 24 | (uint32_t)block[4 * i + 1] << 16 | (uint32_t)block[4 * i + 2] << 8 |
+		       block[4 * i + 3];
 	for (int i = 16; i < 64; i++) {
 		uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
 		uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
 		w[i] = w[i - 16] + s0 + w[i - 7] + s1;
 	}
-	uint32_t a = state[0], b = state[1], c = state[2], d = state[3];
-	uint32_t e = state[4], f = state[5], g = state[6], h = state[7];
+	uint32_t a = h->state[0], b = h->state[1], c = h->state[2], d = h->state[3];
+	uint32_t e = h->state[4], f = h->state[5], g = h->state[6], k = h->state[7];
 	for (int i = 0; i < 64; i++) {
-		uint32_t t1 = h + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + round_constants[i] + w[i];
+		uint32_t t1 = k + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + round_constants[i] + w[i];
 		uint32_t t2 = (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
-		h = g;
+		k = g;
 		g = f;
 		f = e;
 		e = d + t1;
@@ -45,40 +45,80 @@ static void compress(uint32_t state[8], const uint8_t block[64])
 		b = a;
 		a = t1 + t2;
 	}
-	state[0] += a; state[1] += b; state[2] += c; state[3] += d;
-	state[4] += e; state[5] += f; state[6] += g; state[7] += h;
+	h->state[0] += a;
+	h->state[1] += b;
+	h->state[2] += c;
+	h->state[3] += d;
+	h->state[4] += e;
+	h->state[5] += f;
+	h->state[6] += g;
+	h->state[7] += k;
+}
+
+void aa_sha256_init(struct aa_sha256 *h)
+{
+	static const uint32_t initial[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+					    0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
+	memcpy(h->state, initial, sizeof initial);
+	h->length = 0;
+	h->used = 0;
+}
+
+void aa_sha256_update(struct aa_sha256 *h, const void *data, size_t size)
+{
+	const uint8_t *p = data;
+	h->length += size;
+	while (size > 0) {
+		size_t take = 64 - h->used < size ? 64 - h->used : size;
+		memcpy(h->block + h->used, p, take);
+		h->used += take;
+		p += take;
+		size -= take;
+		if (h->used == 64) {
+			compress(h, h->block);
+			h->used = 0;
+		}
+	}
+}
+
+void aa_sha256_final(struct aa_sha256 *h, uint8_t digest[32])
+{
+	const uint64_t bits = h->length * 8;
+	h->block[h->used++] = 0x80;
+	if (h->used > 56) {
+		memset(h->block + h->used, 0, 64 - h->used);
+		compress(h, h->block);
+		h->used = 0;
+	}
+	memset(h->block + h->used, 0, 56 - h->used);
+	for (int i = 0; i < 8; i++)
+		h->block[56 + i] = (uint8_t)(bits >> (56 - 8 * i));
+	compress(h, h->block);
+	for (int i = 0; i < 8; i++) {
+		digest[4 * i] = (uint8_t)(h->state[i] >> 24);
+		digest[4 * i + 1] = (uint8_t)(h->state[i] >> 16);
+		digest[4 * i + 2] = (uint8_t)(h->state[i] >> 8);
+		digest[4 * i + 3] = (uint8_t)h->state[i];
+	}
+}
+
+void aa_sha256_digest_hex(const uint8_t digest[32], char out[65])
+{
+	for (int i = 0; i < 32; i++)
+		snprintf(out + 2 * i, 3, "%02x", digest[i]);
 }
 
 void aa_sha256(const void *data, size_t size, uint8_t digest[32])
 {
-	uint32_t state[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
-			     0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
-	const uint8_t *p = data;
-	size_t left = size;
-	for (; left >= 64; left -= 64, p += 64)
-		compress(state, p);
-	/* the tail, a 1 bit, zeros, and the length in bits as a 64-bit big-endian number */
-	uint8_t last[128] = {0};
-	memcpy(last, p, left);
-	last[left] = 0x80;
-	size_t blocks = left + 1 + 8 <= 64 ? 1 : 2;
-	uint64_t bits = (uint64_t)size * 8;
-	for (int i = 0; i < 8; i++)
-		last[blocks * 64 - 1 - i] = (uint8_t)(bits >> (8 * i));
-	for (size_t b = 0; b < blocks; b++)
-		compress(state, last + 64 * b);
-	for (int i = 0; i < 8; i++) {
-		digest[4 * i] = (uint8_t)(state[i] >> 24);
-		digest[4 * i + 1] = (uint8_t)(state[i] >> 16);
-		digest[4 * i + 2] = (uint8_t)(state[i] >> 8);
-		digest[4 * i + 3] = (uint8_t)state[i];
-	}
+	struct aa_sha256 h;
+	aa_sha256_init(&h);
+	aa_sha256_update(&h, data, size);
+	aa_sha256_final(&h, digest);
 }
 
 void aa_sha256_hex(const void *data, size_t size, char hex[65])
 {
 	uint8_t digest[32];
 	aa_sha256(data, size, digest);
-	for (int i = 0; i < 32; i++)
-		snprintf(hex + 2 * i, 3, "%02x", digest[i]);
+	aa_sha256_digest_hex(digest, hex);
 }

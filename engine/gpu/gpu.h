@@ -125,6 +125,7 @@ enum aa_vertex_layout { AA_VERTEX_NONE /* full-screen triangle from gl_VertexInd
 
 struct aa_gpu_graphics_desc {
 	const char *vert, *frag;     /* shader names; frag may be NULL (depth only) */
+	const struct aa_shader_code *frag_code; /* instead of frag: SPIR-V made at run time (user methods) */
 	const char *geom;            /* optional geometry shader */
 	enum aa_vertex_layout vertex_layout;
 	VkRenderPass render_pass;

@@ -6,6 +6,19 @@
 #include "gpu.h"
 #include "../scene/scene.h"
 
+static int make_module_code(struct aa_gpu *gpu, const struct aa_shader_code *code, VkShaderModule *out,
+			    struct aa_error *err)
+{
+	VkShaderModuleCreateInfo ci = {
+		.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+		.codeSize = code->size,
+		.pCode = code->words,
+	};
+	if (vkCreateShaderModule(gpu->device, &ci, NULL, out) != VK_SUCCESS)
+		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateShaderModule failed for %s", code->name);
+	return 0;
+}
+
 static int make_module(struct aa_gpu *gpu, const char *name, VkShaderModule *out, struct aa_error *err)
 {
 	const struct aa_shader_code *code = aa_shader_find(name);
@@ -59,7 +72,8 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 				    struct aa_gpu_pipeline *p, struct aa_error *err)
 {
 	VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, gs = VK_NULL_HANDLE;
-	if (make_module(gpu, d->vert, &vs, err) || (d->frag && make_module(gpu, d->frag, &fs, err)) ||
+	if (make_module(gpu, d->vert, &vs, err) ||
+	    (d->frag_code ? make_module_code(gpu, d->frag_code, &fs, err) : d->frag && make_module(gpu, d->frag, &fs, err)) ||
 	    (d->geom && make_module(gpu, d->geom, &gs, err))) {
 		vkDestroyShaderModule(gpu->device, vs, NULL);
 		vkDestroyShaderModule(gpu->device, fs, NULL);
@@ -177,7 +191,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 	vkDestroyShaderModule(gpu->device, gs, NULL);
 	if (vr != VK_SUCCESS)
 		return aa_error_set(err, AA_ERR_GPU, "", "cannot create the %s/%s pipeline (VkResult %d)", d->vert,
-				    d->frag ? d->frag : "-", vr);
+				    d->frag_code ? d->frag_code->name : d->frag ? d->frag : "-", vr);
 	p->bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
 	return 0;
 }

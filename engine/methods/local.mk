@@ -35,3 +35,4 @@ include $(srcdir)/engine/methods/fxaa.mk
 include $(srcdir)/engine/methods/temporal2.mk
 include $(srcdir)/engine/methods/rsaa.mk
 include $(srcdir)/engine/methods/floor.mk
+include $(srcdir)/engine/methods/user.mk

@@ -70,7 +70,15 @@ struct aa_method {
 	int (*render)(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err);
 	void (*reset)(struct aa_method_state *s); /* camera cut: forget history */
 	void (*destroy)(struct aa_method_state *s);
+	/* Methods defined at run time (user methods, user_method.h) create through this instead of create:
+	 * it is given the method itself, whose definition it reads. */
+	int (*create_self)(const struct aa_method *self, struct aa_renderer *r, const struct aa_method_params *p,
+			   struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err);
 };
+
+/* Creates an instance of m: create_self when m has one, else create. */
+int aa_method_create(const struct aa_method *m, struct aa_renderer *r, const struct aa_method_params *p,
+		     struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err);
 
 extern const struct aa_method *const aa_methods[];
 extern const int aa_method_count;

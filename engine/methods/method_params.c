@@ -305,6 +305,9 @@ int aa_method_parse(const char *text, const char *path, const struct aa_method *
 		return fail(err, AA_ERR_INVALID, path, NULL, "method name is empty; known methods: %s",
 			    (aa_method_list_names(known, sizeof known), known));
 
+	if (!strcmp(name, "user")) /* job_spec.c reads user methods, with their files */
+		return fail(err, AA_ERR_INVALID, path, NULL, "user: a user method is read from its method file, "
+			    "user:file=FILE.json, in a job's methods (docs/user-methods.md)");
 	const struct aa_method *m = aa_method_find(name);
 	if (!m) {
 		aa_method_list_names(known, sizeof known);

@@ -6,6 +6,7 @@
 #include <jansson.h>
 
 #include "method.h"
+#include "user_method.h"
 
 static const char *type_name(enum aa_param_type t)
 {
@@ -56,5 +57,11 @@ json_t *aa_methods_describe(void)
 		json_array_append_new(arr, json_pack("{ss ss ss so}", "name", m->name, "summary", m->summary, "seed",
 						     m->seed, "params", params));
 	}
+	/* a user method's parameters are its method file's: file=FILE.json, then those */
+	const struct aa_method *user = &aa_method_user;
+	json_array_append_new(arr, json_pack("{ss ss ss s[{ss ss ss ss ss sb}]}", "name", user->name, "summary",
+					     user->summary, "seed", user->seed, "params", "name", "file", "type", "file",
+					     "default", "", "valid", "a method file (docs/user-methods.md)", "help",
+					     "the method file; its own parameters follow as name=value", "main", 0));
 	return arr;
 }

@@ -1,4 +1,5 @@
-/* The list of AA methods: adding a method adds one line here. */
+/* The list of AA methods: adding a method adds one line here. User methods (`user`, user_method.h) are
+ * not listed: each is made from its method file, and `aalab methods` describes `user` after these. */
 #include <string.h>
 
 #include "method.h"
@@ -50,4 +51,10 @@ int aa_method_param_index(const struct aa_method *m, const char *name)
 		if (strcmp(m->params[i].name, name) == 0)
 			return i;
 	return -1;
+}
+
+int aa_method_create(const struct aa_method *m, struct aa_renderer *r, const struct aa_method_params *p,
+		     struct aa_method_result *info, struct aa_method_state **out, struct aa_error *err)
+{
+	return m->create_self ? m->create_self(m, r, p, info, out, err) : m->create(r, p, info, out, err);
 }

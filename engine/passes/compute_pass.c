@@ -25,7 +25,7 @@ static bool binding_is_valid(const struct aa_compute_binding *b)
 static int make_pipeline(struct aa_gpu *gpu, struct aa_compute_pass *p, const struct aa_compute_desc *d,
 			 struct aa_error *err)
 {
-	const struct aa_shader_code *code = aa_shader_find(d->comp);
+	const struct aa_shader_code *code = d->comp_code ? d->comp_code : aa_shader_find(d->comp);
 	if (!code)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "shader '%s' is not embedded in this build", d->comp);
 	VkShaderModuleCreateInfo mci = {

@@ -25,6 +25,7 @@ struct aa_compute_binding {
 
 struct aa_compute_desc {
 	const char *comp;             /* embedded shader name, e.g. "fxaa_cs_luma.comp" */
+	const struct aa_shader_code *comp_code; /* instead of comp: SPIR-V made at run time (user methods) */
 	int binding_count;
 	struct aa_compute_binding bindings[AA_COMPUTE_MAX_BINDINGS];
 	uint32_t push_size;           /* bytes of push constants the shader takes */

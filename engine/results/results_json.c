@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "results.h"
+#include "methods/user_method.h"
 
 #define RESULTS_VERSION 1
 
@@ -327,6 +328,12 @@ static json_t *method_json(struct builder *b, const struct aa_job_result *r, con
 	put(b, obj, "name", str(name));
 	put(b, obj, "label", str(m->label));
 	put(b, obj, "params", params_json(b, m->method, &m->params));
+	const struct aa_user_method *um = aa_user_method_of(m->method);
+	if (um) { /* "name" says what kind of method it is; the file says which one, and its hash which version */
+		put(b, obj, "name", str("user"));
+		put(b, obj, "user_method", json_pack("{s:s, s:s, s:s, s:s}", "name", um->name, "file", um->file,
+						     "sha256", um->sha256, "summary", um->summary));
+	}
 	put(b, obj, "path_taken", str(m->path_taken));
 	put(b, obj, "alpha_rule", str(m->method ? aa_alpha_rule_name(aa_method_alpha_rule(m->method, &m->params))
 						: ""));
