@@ -18,6 +18,7 @@ static const char *const order[] = {"shadow-map", "scene-forward", "alpha-test",
 /* What each shipped scene holds, from its file: a shadow-casting directional light, a cut-out material,
  * anything that moves. */
 static const struct { const char *scene; bool shadow, cutout, animated; } scenes[] = {
+	{"checker-box", true, false, false},
 	{"cutout-fence", true, true, false},
 	{"hairball", false, false, true},
 	{"hard-edges", true, false, false},
