@@ -136,7 +136,7 @@ def log(msg, fh=None):
 
 def run(cmd, cwd, timeout=None, out=None):
     """Runs cmd in its own process group; returns (status, seconds). On timeout the group is killed and
-    the status is None."""
+    the status is None; so is it when the campaign itself is stopped (SIGTERM, SIGINT)."""
     t0 = time.time()
     proc = subprocess.Popen(cmd, cwd=cwd, stdout=out or subprocess.DEVNULL, stderr=subprocess.STDOUT,
                             start_new_session=True)
@@ -146,7 +146,32 @@ def run(cmd, cwd, timeout=None, out=None):
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
         status = None
+    except BaseException:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        raise
     return status, time.time() - t0
+
+
+def stop_on_sigterm():
+    """SIGTERM stops the campaign like Ctrl-C: the running build or test is killed and the mutated file
+    restored before exiting."""
+    def handler(signum, frame):
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGTERM, handler)
+
+
+def restore_pending(workdir):
+    """A campaign killed without the chance to restore (SIGKILL) left a note of the mutated file: put the
+    original back before the copy is used again."""
+    note = os.path.join(workdir, "pending.json")
+    if os.path.exists(note):
+        with open(note) as f:
+            pending = json.load(f)
+        with open(pending["path"], "w", encoding="utf-8") as f:
+            f.write(pending["original"])
+        os.remove(note)
+        print("restored %s, left mutated by an interrupted campaign" % pending["path"])
 
 
 def copy_tree(srcdir, dest, source):
@@ -183,6 +208,7 @@ def prepare(args, fh):
     from the same tree with the same flags."""
     src = os.path.join(args.workdir, "src")
     stamp = os.path.join(args.workdir, "stamp")
+    restore_pending(args.workdir)
     want = "%s %s" % (tree_id(args.srcdir, args.source), args.configure_flags)
     if os.path.isfile(stamp) and open(stamp).read() == want:
         log("reusing the build in %s" % src, fh)
@@ -251,7 +277,9 @@ def campaign(args, mutants):
         path = os.path.join(src, m.file)
         with open(path, encoding="utf-8") as f:
             original = f.read()
-        stat = os.stat(path)
+        note = os.path.join(args.workdir, "pending.json")
+        with open(note, "w") as f:
+            json.dump({"path": path, "original": original}, f)
         with open(path, "w", encoding="utf-8") as f:
             f.write(m.apply(original))
         t0 = time.time()
@@ -270,8 +298,7 @@ def campaign(args, mutants):
         finally:
             with open(path, "w", encoding="utf-8") as f:
                 f.write(original)
-            # a newer time than the mutant's, so make rebuilds what the mutant touched
-            os.utime(path, (time.time(), max(time.time(), stat.st_mtime + 1)))
+            os.remove(note)
         secs = time.time() - t0
         results.append({"id": m.id, "part": m.part, "outcome": outcome, "killed_by": killer, "seconds": round(secs),
                         "about": m.about, "file": m.file})
@@ -343,7 +370,12 @@ def main():
         return 0
     if os.path.realpath(args.workdir).startswith(os.path.realpath(args.srcdir) + os.sep):
         sys.exit("mutate.py: --workdir must be outside the project")
-    return campaign(args, mutants)
+    stop_on_sigterm()
+    try:
+        return campaign(args, mutants)
+    except KeyboardInterrupt:
+        print("mutate.py: stopped; the copy in %s is restored to the unmutated code" % args.workdir)
+        return 130
 
 
 if __name__ == "__main__":
