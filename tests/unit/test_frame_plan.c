@@ -37,6 +37,7 @@ static const struct { const char *method; bool velocity, ids, history, supersamp
 	{"taa", true, false, true, false, AA_NEED_VELOCITY | AA_NEED_HISTORY | AA_NEED_DEPTH},
 	{"taa-sobel", true, true, true, false, AA_NEED_VELOCITY | AA_NEED_HISTORY | AA_NEED_DEPTH | AA_NEED_IDS},
 	{"copy", false, false, false, false, 0},
+	{"floor", false, false, false, false, 0},
 	{"smaa", false, false, false, false, 0},
 	{"smaa:edge=depth", false, false, false, false, AA_NEED_DEPTH},
 	{"fxaa", false, false, false, false, 0},
@@ -79,10 +80,17 @@ static const struct aa_plan_entry *entry(const struct aa_frame_plan *plan, int i
 	return &plan->entries[i];
 }
 
-/* The shipped scenes are the ones listed above (a new scene needs its line here). */
+/* The shipped scenes and the registered methods are the ones listed above (a new one needs its line). */
 static void test_scene_list(void **state)
 {
 	(void)state;
+	for (int k = 0; k < aa_method_count; k++) {
+		bool listed = false;
+		for (int m = 0; m < METHODS; m++)
+			listed = listed || strcmp(methods[m].method, aa_methods[k]->name) == 0;
+		if (!listed)
+			fail_msg("method %s has no expected plan here", aa_methods[k]->name);
+	}
 	char **names;
 	int count;
 	assert_int_equal(aa_scene_list(&names, &count), 0);
