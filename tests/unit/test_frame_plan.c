@@ -22,6 +22,7 @@ static const struct { const char *scene; bool shadow, cutout, animated; } scenes
 	{"cutout-fence", true, true, false},
 	{"hairball", false, false, true},
 	{"hard-edges", true, false, false},
+	{"hdr-teleport", false, false, true},
 	{"horizon", false, false, false},
 	{"moving-sphere", true, false, true},
 	{"spinning-wheel", false, false, true},
