@@ -230,17 +230,28 @@ def prepare(args, fh):
     return src
 
 
-def build(src, jobs, logfile):
+# Check programs that script tests run (a script's log does not depend on them, so make would not rebuild
+# them for a mutant of the code they link).
+SCRIPT_HELPERS = ["tests/tools/metrics_tool"]
+
+
+def build(src, jobs, logfile, tests):
+    """Rebuilds the programs and libraries, the helpers script tests run and the mutant's C tests only
+    (not every check program: relinking them all costs more than most tests)."""
+    targets = ["all"] + SCRIPT_HELPERS + [t for t in tests if os.path.isfile(os.path.join(src, t + ".c"))]
+    if "check" in tests:
+        targets = ["check", "TESTS="]
     with open(logfile, "w") as out:
-        status, secs = run(["make", "-j%d" % jobs, "check", "TESTS="], src, out=out)
+        status, secs = run(["make", "-j%d" % jobs] + targets, src, out=out)
     return status == 0, secs
 
 
 def run_test(src, test, jobs, timeout, logfile):
     """One test through the project's harness (its environment, validation on). Returns
-    ('pass'|'fail'|'timeout', seconds)."""
+    ('pass'|'fail'|'timeout', seconds). check_PROGRAMS is emptied for a single test: its own program is
+    rebuilt through its log's dependency, the others are not needed."""
     tests = "" if test == "check" else "TESTS=" + test
-    cmd = ["make", "-j%d" % jobs, "check"] + ([tests] if tests else [])
+    cmd = ["make", "-j%d" % jobs, "check"] + ([tests, "check_PROGRAMS="] if tests else [])
     with open(logfile, "w") as out:
         status, secs = run(cmd, src, timeout=timeout, out=out)
     return ("timeout" if status is None else "pass" if status == 0 else "fail"), secs
@@ -285,7 +296,7 @@ def campaign(args, mutants):
         t0 = time.time()
         outcome, killer = "survived", ""
         try:
-            ok, _ = build(src, args.jobs, os.path.join(logs, m.id + ".build"))
+            ok, _ = build(src, args.jobs, os.path.join(logs, m.id + ".build"), m.tests)
             if not ok:
                 outcome = "not built"
             else:
@@ -304,7 +315,7 @@ def campaign(args, mutants):
                         "about": m.about, "file": m.file})
         log("[%d/%d] %-34s %-9s %s (%.0f s)" % (i, len(mutants), m.id, outcome.upper(), killer, secs), fh)
     # leave the copy built from the unmutated code
-    build(src, args.jobs, os.path.join(logs, "final.build"))
+    build(src, args.jobs, os.path.join(logs, "final.build"), ["check"])
 
     scored = [r for r in results if r["outcome"] != "not built"]
     killed = sum(r["outcome"] == "killed" for r in scored)
