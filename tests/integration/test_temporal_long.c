@@ -19,8 +19,10 @@
 #define TOL_PSNR 0.05    /* dB */
 #define TOL_FLICKER 0.02 /* 8-bit levels */
 
-static const char *const temporal[] = {"taa", "taa-sobel", "asaa", "t2msaa"};
-#define TEMPORAL 4
+/* seed 001's resolve counts frames since the reset itself (its running-average ramp): a cut must reset
+ * that count too */
+static const char *const temporal[] = {"taa", "taa-sobel", "asaa", "t2msaa", "taa:preset=seed001"};
+#define TEMPORAL 5
 
 static struct aa_job_result *run(const char *scene, const char *path, const char *const *methods, int n, int w,
 				 int h, int first, int frames, int samples, const struct aa_scene *sc,
