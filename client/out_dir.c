@@ -2,6 +2,7 @@
  * complete; Ctrl-C says what was kept. */
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <ftw.h>
 #include <signal.h>
 #include <stdio.h>
@@ -141,6 +142,23 @@ int aa_out_dir_commit(struct aa_out_dir *o, char *err, size_t err_size)
 	if (old[0])
 		remove_tree(old);
 	o->work[0] = 0; /* it is DIR now */
+	/* the rename survives a crash only once the folder holding DIR is synced */
+	char parent[1024];
+	snprintf(parent, sizeof parent, "%s", o->final);
+	char *slash = strrchr(parent, '/');
+	if (!slash)
+		snprintf(parent, sizeof parent, ".");
+	else
+		slash[slash == parent] = 0;
+	int fd = open(parent, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (fd < 0 || fsync(fd) != 0) {
+		snprintf(err, err_size, "out: cannot sync directory '%s' after renaming the results into it: %s "
+			 "(they are in '%s' but may not survive a crash)", parent, strerror(errno), o->final);
+		if (fd >= 0)
+			close(fd);
+		return -1;
+	}
+	close(fd);
 	return 0;
 }
 

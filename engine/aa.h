@@ -13,9 +13,14 @@ struct aa_engine;
 
 struct aa_engine_options {
 	const char *device;   /* substring of the device name or index ("0"); NULL: $AALAB_DEVICE or first */
-	bool validation;      /* enable VK_LAYER_KHRONOS_validation if installed ($AALAB_VALIDATION=1 too) */
+	bool validation;      /* enable VK_LAYER_KHRONOS_validation if installed ($AALAB_VALIDATION on too) */
 	int verbose;
 };
+
+/* A boolean environment variable: unset, empty, 0, false, no or off (any case) is false; 1, true, yes, on
+ * and anything else is true, so that a misspelt value leaves a safety check like validation on. */
+bool aa_env_flag(const char *name);
+bool aa_env_flag_value(const char *value);
 
 int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **out, struct aa_error *err);
 void aa_engine_destroy(struct aa_engine *engine);

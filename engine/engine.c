@@ -2,10 +2,27 @@
 #include <malloc.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "aa.h"
 #include "engine_internal.h"
 #include "renderer.h"
+
+bool aa_env_flag_value(const char *value)
+{
+	static const char *const off[] = {"", "0", "false", "no", "off"};
+	if (!value)
+		return false;
+	for (size_t i = 0; i < sizeof off / sizeof off[0]; i++)
+		if (strcasecmp(value, off[i]) == 0)
+			return false;
+	return true;
+}
+
+bool aa_env_flag(const char *name)
+{
+	return aa_env_flag_value(getenv(name));
+}
 
 int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **out, struct aa_error *err)
 {
@@ -18,8 +35,7 @@ int aa_engine_create(const struct aa_engine_options *opts, struct aa_engine **ou
 	struct aa_engine *e = calloc(1, sizeof *e);
 	if (!e)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-	const char *v = getenv("AALAB_VALIDATION");
-	bool validation = (opts && opts->validation) || (v && strcmp(v, "0") != 0 && *v);
+	bool validation = (opts && opts->validation) || aa_env_flag("AALAB_VALIDATION");
 	if (aa_gpu_create(&e->gpu, opts ? opts->device : NULL, validation, err)) {
 		free(e);
 		return -1;

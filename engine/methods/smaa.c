@@ -13,6 +13,7 @@
 #include "../passes/compute_pass.h"
 #include "../renderer.h"
 #include "method.h"
+#include "smaa.h"
 #include "smaa_textures.h"
 
 enum { PRESET_LOW, PRESET_MEDIUM, PRESET_HIGH, PRESET_ULTRA };
@@ -73,6 +74,20 @@ struct aa_method_state {
 	struct weights_push weights_push;
 };
 
+void aa_smaa_settings(const struct aa_method_params *p, struct aa_smaa_settings *out)
+{
+	int preset = (int)p->v[PARAM_PRESET];
+	const struct smaa_preset *q = &presets[preset >= 0 && preset <= PRESET_ULTRA ? preset : PRESET_HIGH];
+	float threshold = p->v[PARAM_THRESHOLD] > 0.0 ? (float)p->v[PARAM_THRESHOLD] : q->threshold;
+	*out = (struct aa_smaa_settings){
+		.threshold = (int)p->v[PARAM_EDGE] == EDGE_DEPTH ? 0.1f * threshold : threshold, /* SMAA_DEPTH_THRESHOLD */
+		.contrast_factor = LOCAL_CONTRAST_FACTOR,
+		.search_steps = q->search_steps,
+		.diag_steps = q->diag_steps,
+		.corner_keep = q->corner_rounding < 0.0f ? -1.0f : 1.0f - q->corner_rounding / 100.0f,
+	};
+}
+
 static unsigned smaa_needs(const struct aa_method_params *p)
 {
 	return (int)p->v[PARAM_EDGE] == EDGE_DEPTH ? AA_NEED_DEPTH : 0;
@@ -113,17 +128,11 @@ static int smaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	s->r = r;
 	int preset = (int)p->v[PARAM_PRESET], edge = (int)p->v[PARAM_EDGE];
-	const struct smaa_preset *q = &presets[preset];
-	float threshold = p->v[PARAM_THRESHOLD] > 0.0 ? (float)p->v[PARAM_THRESHOLD] : q->threshold;
-	s->edges_push = (struct edges_push){
-		.threshold = edge == EDGE_DEPTH ? 0.1f * threshold : threshold, /* SMAA_DEPTH_THRESHOLD */
-		.contrast_factor = LOCAL_CONTRAST_FACTOR,
-	};
+	struct aa_smaa_settings set;
+	aa_smaa_settings(p, &set);
+	s->edges_push = (struct edges_push){.threshold = set.threshold, .contrast_factor = set.contrast_factor};
 	s->weights_push = (struct weights_push){
-		.search_steps = q->search_steps,
-		.diag_steps = q->diag_steps,
-		.corner_keep = q->corner_rounding < 0.0f ? -1.0f : 1.0f - q->corner_rounding / 100.0f,
-	};
+		.search_steps = set.search_steps, .diag_steps = set.diag_steps, .corner_keep = set.corner_keep};
 	snprintf(info->path_taken, sizeof info->path_taken, "SMAA 1x %s, %s edges, threshold %.3g",
 		 smaa_presets[preset], smaa_edge_modes[edge], (double)s->edges_push.threshold);
 

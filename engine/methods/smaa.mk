@@ -1,6 +1,6 @@
 # SMAA 1x (engine/methods/smaa.c): the method, its generated look-up textures, shaders and tests.
 
-libaaengine_a_SOURCES += engine/methods/smaa.c engine/methods/smaa_textures.h engine/methods/smaa_textures.c
+libaaengine_a_SOURCES += engine/methods/smaa.h engine/methods/smaa.c engine/methods/smaa_textures.h engine/methods/smaa_textures.c
 glsl_files += shaders/smaa_encode.frag shaders/smaa_edges.frag shaders/smaa_queue.comp \
 	shaders/smaa_weights.comp shaders/smaa_blend.frag
 EXTRA_DIST += shaders/smaa_queue.glsl

@@ -39,6 +39,9 @@ try:
     os.chmod(token, 0o644)
     rc, out = aalabd_check("--tcp", "127.0.0.1:0", "--token-file", token)
     check(rc != 0 and "chmod 600" in out, "--check: a token file others can read is not ok")
+    os.chmod(token, 0o640)  # aalabd.8: its group may not read it either
+    rc, out = aalabd_check("--tcp", "127.0.0.1:0", "--token-file", token)
+    check(rc != 0 and "chmod 600" in out, "--check: a token file its group can read is not ok")
     rc, out = aalabd_check("--http", "127.0.0.1:notaport")
     check(rc != 0 and "http" in out, "--check: a bad HTTP address is not ok")
     rc, out = aalabd_check("--device", "no-such-gpu-here")

@@ -4,12 +4,15 @@ and the interrupted job runs again from the start and completes with all its res
 behind it runs too. SIGTERM with a job running drains: the job finishes before the daemon exits."""
 import json
 import os
+import re
 import signal
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from daemon_lib import Daemon, SMALL_JOB, check, finish, wait_state, check_log_and_cleanup, crashed
+
+TEMP_FILE = re.compile(r"^\..+\.[A-Za-z0-9]{6}$")
 
 d = None
 try:
@@ -45,7 +48,9 @@ try:
     check(frames == [12, 12], "results.json has all 12 frames of each method")
     pngs = sum(len(f) for _, _, f in os.walk(os.path.join(d.state, "jobs", a, "frames")))
     check(pngs == 12 * 3, "every frame image is stored (%d)" % pngs)
-    leftovers = [f for _, _, fs in os.walk(d.state) for f in fs if ".tmp" in f]
+    # atomic writes go through a temporary ".NAME.XXXXXX" beside NAME (aa_results_write_file_atomic);
+    # the store writes no other hidden files
+    leftovers = [f for _, _, fs in os.walk(d.state) for f in fs if TEMP_FILE.match(f)]
     check(not leftovers, "no temporary files left (%s)" % leftovers)
 
     # SIGTERM while a job runs: the daemon finishes it, then exits 0

@@ -14,7 +14,7 @@ int fixture_setup(void **state)
 {
 	(void)state;
 	struct aa_error err = {0};
-	struct aa_engine_options o = {.validation = getenv("AALAB_VALIDATION") != NULL};
+	struct aa_engine_options o = {.validation = aa_env_flag("AALAB_VALIDATION")};
 	if (aa_engine_create(&o, &fixture_engine, &err)) {
 		fprintf(stderr, "engine: %s\n", err.message);
 		return -1;

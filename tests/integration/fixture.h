@@ -1,6 +1,6 @@
 /* Shared set-up of the GPU integration tests: one engine per test program (validation on when
- * $AALAB_VALIDATION is set; teardown fails on any validation error), job specs from method strings, and
- * job runs that fail the test with the engine's message. */
+ * $AALAB_VALIDATION is on, aa_env_flag; teardown fails on any validation error), job specs from method
+ * strings, and job runs that fail the test with the engine's message. */
 #ifndef AA_TEST_FIXTURE_H
 #define AA_TEST_FIXTURE_H
 

@@ -81,6 +81,17 @@ static int capture_linear(const struct aa_event *ev, void *user)
 	return 0;
 }
 
+static int capture_small(const struct aa_event *ev, void *user)
+{
+	struct capture *c = user;
+	if (ev->type != AA_EVENT_METHOD_FRAME)
+		return 0;
+	for (int i = 0; i < ev->linear->width * ev->linear->height; i++)
+		for (int ch = 0; ch < 3; ch++)
+			c->images[ev->method_index][i * 3 + ch] = ev->linear->pixels[i * 4 + ch];
+	return 0;
+}
+
 /* Pixels where method m's frame differs from none's; *off_diagonal counts those not on the diagonal. */
 static int differing(const struct capture *c, int m, int *off_diagonal)
 {
@@ -131,6 +142,63 @@ static void test_once_per_pixel_on_a_cutout_quad(void **state)
 	aa_scene_free(scene);
 }
 
+/* Alpha to coverage keeps the first round(alpha * N) samples of the pattern (docs/methods.md): a quad of
+ * uniform alpha 179/255 = 0.702 over the whole image keeps 3 of 4 samples and 6 of 8 (0.75 of the quad's
+ * colour, the rest background) in every pixel off the diagonal, on both paths; none shows the quad whole. */
+static void test_alpha_to_coverage_rounds(void **state)
+{
+	(void)state;
+	enum { S = 32 };
+	static const char *const list[] = {"none", "msaa:4,path=hardware,alpha_to_coverage=true",
+					   "msaa:4,path=virtual,alpha_to_coverage=true", "msaa:8,alpha_to_coverage=true"};
+	const double expected[] = {1.0, 0.75, 0.75, 0.75};
+	struct aa_polygon2d quad = {4, {{0, 0}, {S, 0}, {S, S}, {0, S}}};
+	struct aa_scene *scene;
+	struct aa_error err = {0};
+	float fg[3] = {1, 1, 1}, bg[3] = {0.1f, 0.2f, 0.4f};
+	assert_int_equal(aa_scene_from_polygons(&quad, 1, S, S, fg, bg, &scene, &err), 0);
+	uint8_t px[4 * 4 * 4];
+	for (int i = 0; i < 16; i++) {
+		px[i * 4] = 250;
+		px[i * 4 + 1] = 40;
+		px[i * 4 + 2] = 20;
+		px[i * 4 + 3] = 179;
+	}
+	assert_non_null(scene->textures = calloc(1, sizeof *scene->textures));
+	assert_int_equal(aa_texture_from_rgba8(&scene->textures[0], px, 4, 4, &err), 0);
+	scene->texture_count = 1;
+	struct aa_material *m = &scene->materials[0];
+	m->pattern = AA_PATTERN_TEXTURE;
+	m->texture_index = 0;
+	m->alpha_cutout = true;
+	m->alpha_cutoff = 0.5f;
+	struct aa_job_spec spec;
+	fixture_spec(&spec, NULL, list, 4, S, S, 1, 2);
+	struct capture c;
+	for (int k = 0; k < 4; k++)
+		assert_non_null(c.images[k] = calloc(S * S * 3, sizeof(float)));
+	struct aa_job_result *r = fixture_run(&spec, scene, capture_small, &c);
+	for (int k = 0; k < 4; k++) {
+		double worst = 0.0;
+		for (int y = 0; y < S; y++)
+			for (int x = 0; x < S; x++) {
+				if (abs(x - y) <= 1)
+					continue;
+				const float *p = &c.images[k][(y * S + x) * 3];
+				double share = (p[0] - bg[0]) / (c.images[0][(y * S + x) * 3] - bg[0]);
+				worst = fmax(worst, fabs(share - expected[k]));
+			}
+		printf("  uniform alpha 0.702: %-44s quad share off by at most %.4f from %.2f\n", list[k], worst,
+		       expected[k]);
+		if (worst > 0.01)
+			fail_msg("%s: a pixel keeps %.4f off %.2f of the quad", list[k], worst, expected[k]);
+	}
+	for (int k = 0; k < 4; k++)
+		free(c.images[k]);
+	fixture_free(r);
+	aa_scene_free(scene);
+}
+
 /* The issue's scene: hardware and virtual samples test alpha the same way, with and without alpha to
  * coverage, so they score alike. */
 static void test_paths_agree_on_cutout_fence(void **state)
@@ -175,6 +243,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_once_per_pixel_on_a_cutout_quad),
+		cmocka_unit_test(test_alpha_to_coverage_rounds),
 		cmocka_unit_test(test_paths_agree_on_cutout_fence),
 		cmocka_unit_test(test_every_method_reports_its_rule),
 	};

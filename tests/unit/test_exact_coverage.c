@@ -204,6 +204,15 @@ static void test_edge_cases(void **state)
 	assert_true(fabs(total_of(c, w, h) - 2.5 * 3) < 1e-12);
 	assert_true(fabs(c[2] - 0.5) < 1e-12);
 	free(c);
+	/* Past the right and bottom borders too: the last column and row are covered in full. */
+	struct aa_polygon2d far_corner = rectangle(7.5, 6, 15, 20);
+	c = coverage_of(&far_corner, 1, w, h);
+	assert_true(fabs(total_of(c, w, h) - 2.5 * 4) < 1e-12);
+	for (int y = 6; y < h; y++) {
+		assert_true(c[y * w + 7] == 0.5);
+		assert_true(c[y * w + 8] == 1.0 && c[y * w + 9] == 1.0);
+	}
+	free(c);
 	/* Entirely outside, degenerate, non-finite and absurdly large polygons add nothing. */
 	struct aa_polygon2d nothing[4] = { rectangle(20, 20, 30, 30), { .count = 2 }, rectangle(1, 1, NAN, 4),
 					   rectangle(-1e20, -1e20, 1e20, 1e20) };

@@ -12,7 +12,10 @@
 
 #include <cmocka.h>
 
+#include <png.h>
+
 #include "image/image.h"
+#include "image/png_io.h"
 #include "metrics/metrics.h"
 
 #define PSNR_ONE_LSB 48.130803608679102 /* 20 log10(255) */
@@ -435,6 +438,53 @@ static void test_png_round_trip(void **state)
 	rmdir(dir);
 }
 
+/* A 16-bit PNG (written here with libpng, as other tools write them) read as 8 bits: each sample is the
+ * nearest 8-bit value, v * 255 / 65535 rounded (129 is 0.502: 1; 128 is 0.498: 0); as float, v / 65535. */
+static void test_png_16bit_samples(void **state)
+{
+	(void)state;
+	static const uint16_t grey[] = {0, 128, 129, 257, 32767, 32896, 65406, 65535};
+	static const uint8_t nearest[] = {0, 0, 1, 1, 127, 128, 254, 255};
+	enum { N = sizeof grey / sizeof grey[0] };
+	char dir[512], path[600];
+	assert_int_equal(make_temp_dir(dir, sizeof dir), 0);
+	snprintf(path, sizeof path, "%s/grey16.png", dir);
+	FILE *f = fopen(path, "wb");
+	assert_non_null(f);
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	png_infop info = png_create_info_struct(png);
+	assert_true(png && info && !setjmp(png_jmpbuf(png)));
+	png_init_io(png, f);
+	png_set_IHDR(png, info, N, 1, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+		     PNG_FILTER_TYPE_DEFAULT);
+	png_write_info(png, info);
+	uint8_t row[2 * N];
+	for (int i = 0; i < N; i++) { /* big-endian, as PNG stores them */
+		row[2 * i] = (uint8_t)(grey[i] >> 8);
+		row[2 * i + 1] = (uint8_t)(grey[i] & 0xff);
+	}
+	png_write_row(png, row);
+	png_write_end(png, NULL);
+	png_destroy_write_struct(&png, &info);
+	fclose(f);
+	struct aa_error err = {0};
+	struct aa_file_pixels px;
+	assert_int_equal(aa_png_read(path, false, &px, &err), 0);
+	assert_int_equal(px.width, N);
+	assert_int_equal(px.height, 1);
+	assert_int_equal(px.channels, 1);
+	for (int i = 0; i < N; i++)
+		if (((const uint8_t *)px.data)[i] != nearest[i])
+			fail_msg("16-bit %u read as %u, expected %u", grey[i], ((const uint8_t *)px.data)[i], nearest[i]);
+	free(px.data);
+	assert_int_equal(aa_png_read(path, true, &px, &err), 0);
+	for (int i = 0; i < N; i++)
+		assert_float_equal(((const float *)px.data)[i], grey[i] / 65535.0f, 1e-7f);
+	free(px.data);
+	unlink(path);
+	rmdir(dir);
+}
+
 static void test_float_round_trip_and_errors(void **state)
 {
 	(void)state;
@@ -529,6 +579,7 @@ int main(void)
 		cmocka_unit_test(test_srgb_round_trip),
 		cmocka_unit_test(test_alloc_limits),
 		cmocka_unit_test(test_png_round_trip),
+		cmocka_unit_test(test_png_16bit_samples),
 		cmocka_unit_test(test_float_round_trip_and_errors),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -431,6 +431,13 @@ static void test_write_json(void **state)
 	assert_true(first.st_ino != second.st_ino);
 	assert_int_equal(count_entries(dir), 1);
 
+	/* a text file: it ends with a newline */
+	FILE *f = fopen(path, "rb");
+	assert_non_null(f);
+	assert_int_equal(fseek(f, -1, SEEK_END), 0);
+	assert_int_equal(fgetc(f), '\n');
+	fclose(f);
+
 	json_error_t jerr;
 	json_t *j = json_load_file(path, 0, &jerr);
 	assert_non_null(j);
