@@ -426,6 +426,8 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	bool hold_first = strcmp(spec->path, "static") == 0;
 	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
 	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
+	if (js.result)
+		js.result->fps = fps;
 	for (int ordinal = 0; rc == 0 && ordinal < spec->frames; ordinal++) {
 		struct aa_frame_ctx ctx = {.ordinal = ordinal, .frame = spec->first_frame + ordinal};
 		double t = ctx.frame / fps, t_before = (ctx.frame - 1) / fps;

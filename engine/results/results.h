@@ -42,4 +42,11 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 extern const char aa_report_style[];
 void aa_report_esc(FILE *o, const char *s);
 
+/* report.html's image viewer (report_viewer.c): its section of the page (data, viewer.css, viewer.js),
+ * and viewer/NNNN.js beside the page, one per frame, carrying the frame's PNGs (read from dir). */
+int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, struct aa_error *err);
+int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
+void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
+
 #endif
