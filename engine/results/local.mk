@@ -2,7 +2,8 @@
 # viewer.js and viewer.css are edited as themselves and embedded into the library at build time as
 # C byte arrays (viewer_assets.h), so the report stays one self-contained page.
 
-libaaengine_a_SOURCES += engine/results/report_viewer.c engine/results/report_warnings.c
+libaaengine_a_SOURCES += engine/results/report_viewer.c engine/results/report_warnings.c \
+	engine/results/report_regions.c engine/results/exr_frames.c
 VIEWER_ASSETS = engine/results/viewer.js engine/results/viewer.css
 EXTRA_DIST += $(VIEWER_ASSETS)
 BUILT_SOURCES += engine/results/viewer_assets.h
@@ -19,3 +20,10 @@ engine/results/report_viewer.$(OBJEXT): engine/results/viewer_assets.h
 # the viewer in headless Chromium (skipped when chromium is not installed); cdp.py drives it
 TESTS += tests/integration/viewer_browser.py
 EXTRA_DIST += tests/integration/viewer_browser.py tests/integration/cdp.py
+
+# the warnings panel, the viewer's data and frame scripts, worst regions and EXR frames, on made-up results
+check_PROGRAMS += tests/unit/test_report_viewer
+tests_unit_test_report_viewer_SOURCES = tests/unit/test_report_viewer.c
+tests_unit_test_report_viewer_CFLAGS = $(TEST_CFLAGS)
+tests_unit_test_report_viewer_LDADD = $(TEST_LIBS)
+TESTS += tests/unit/test_report_viewer

@@ -651,7 +651,7 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	fputs("<div class=\"cards\">\n", o);
 	summary_cards(o, &view);
 	fputs("</div>\n<h2 id=\"images\">Images</h2>\n", o);
-	if (aa_report_write_viewer(o, &view, err)) {
+	if (aa_report_write_viewer(o, &view, dir, err)) {
 		fclose(o);
 		free(buf);
 		return -1;

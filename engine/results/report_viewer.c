@@ -18,6 +18,10 @@
 #include "results.h"
 #include "viewer_assets.h" /* aa_viewer_js, aa_viewer_css: generated from viewer.js and viewer.css */
 
+/* Worst regions: 16-pixel tiles, shown at 8x (128 CSS pixels) side by side for every method. */
+#define REGION_TILE 16
+#define REGION_COUNT 6
+
 static const char *const viewer_palette[] = { "#2563eb", "#dc2626", "#16a34a", "#ea580c", "#7c3aed",
 					      "#0891b2", "#db2777", "#65a30d", "#92400e", "#475569" };
 
@@ -41,7 +45,7 @@ static json_t *magma_hex(void)
 	return json_string(hex);
 }
 
-static json_t *viewer_data(const struct aa_job_result *r)
+static json_t *viewer_data(const struct aa_job_result *r, const char *dir)
 {
 	json_t *methods = json_array();
 	for (int i = 0; i < r->method_count; i++) {
@@ -63,24 +67,31 @@ static json_t *viewer_data(const struct aa_job_result *r)
 	for (int f = 0; f < frame_count; f++)
 		json_array_append_new(frames, json_integer(r->method_count > 0 ? r->methods[0].frames[f].frame
 									       : r->reference.frames[f].frame));
-	return json_pack("{si si sf sb si so so so}", "width", r->spec.width, "height", r->spec.height, "fps",
+	return json_pack("{so si si sf sb si so so so}", "regions",
+			 aa_report_worst_regions(r, dir, REGION_TILE, REGION_COUNT), "width", r->spec.width, "height", r->spec.height, "fps",
 			 r->fps > 0 ? r->fps : 30.0, "images", r->spec.keep_frames && frame_count > 0,
 			 "reference_samples", r->reference.samples, "frames", frames, "methods", methods,
 			 "magma", magma_hex());
 }
 
-int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, struct aa_error *err)
+int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, const char *dir, struct aa_error *err)
 {
-	json_t *data = viewer_data(r);
-	/* JSON_ESCAPE_SLASH writes "/" as "\/": a label cannot close the <script> element early. */
-	char *text = data ? json_dumps(data, JSON_COMPACT | JSON_ESCAPE_SLASH) : NULL;
+	json_t *data = viewer_data(r, dir);
+	char *text = data ? json_dumps(data, JSON_COMPACT) : NULL;
 	json_decref(data);
 	if (!text)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing the report's viewer");
 	fprintf(o, "<style>%s</style>\n<section id=\"viewer\" class=\"viewer\"><noscript><p class=\"note\">The "
 		   "image viewer needs JavaScript; the images are in frames/, diff/ and flip/ beside this page."
-		   "</p></noscript></section>\n<script type=\"application/json\" id=\"aa-viewer-data\">%s</script>\n"
-		   "<script>%s</script>\n", aa_viewer_css, text, aa_viewer_js);
+		   "</p></noscript></section>\n<script type=\"application/json\" id=\"aa-viewer-data\">", aa_viewer_css);
+	/* Every '<' (only ever inside a JSON string) as \u003c: no label can end the element ("</script") or
+	 * switch the HTML tokenizer into a script's escaped states ("<!--"). */
+	for (const char *p = text; *p; p++)
+		if (*p == '<')
+			fputs("\\u003c", o);
+		else
+			fputc(*p, o);
+	fprintf(o, "</script>\n<script>%s</script>\n", aa_viewer_js);
 	free(text);
 	return 0;
 }

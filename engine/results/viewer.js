@@ -11,7 +11,7 @@ const REF = -1; /* source id of the reference; methods are 0..M-1 */
 const ZOOMS = [1, 2, 4, 8, 16, 32];
 const S = {
 	frame: 0, shown: -1, zoom: 1, cx: W / 2, cy: H / 2, px: -1, py: -1, hover: false,
-	mode: "abs", gain: 4, against: REF, a: Math.max(0, M - 1), b: REF, showB: false,
+	mode: "abs", gain: 4, against: REF, threshold: 0.01, a: Math.max(0, M - 1), b: REF, showB: false,
 	playing: false, fps: D.fps, playedFrames: 0, playStart: 0, measuredFps: 0
 };
 const api = window.aalabViewer = { ready: false, state: () => Object.assign({}, S, view()) };
@@ -99,15 +99,17 @@ function pixels(fr, key) {
 /* ---------------------------------------------------------------- differences */
 const luma = (d, i) => 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2]; /* Rec. 709, as the metrics */
 function diffCanvas(fr, id) {
-	const key = [id, S.against, S.mode, S.gain].join();
+	const key = [id, S.against, S.mode, S.gain, S.threshold].join();
 	if (fr.diffs.has(key)) return fr.diffs.get(key);
 	const a = pixels(fr, id), b = pixels(fr, S.against);
 	const c = el("canvas");
 	c.width = W; c.height = H;
 	if (a && b) {
 		const g = c.getContext("2d");
-		const out = g.createImageData(W, H), o = out.data, k = S.gain;
+		const out = g.createImageData(W, H), o = out.data, k = S.gain, limit = S.threshold * 255;
+		let over = 0; /* as idiff counts: pixels where any channel differs by more than the threshold */
 		for (let i = 0; i < o.length; i += 4) {
+			if (Math.abs(a[i] - b[i]) > limit || Math.abs(a[i + 1] - b[i + 1]) > limit || Math.abs(a[i + 2] - b[i + 2]) > limit) over++;
 			if (S.mode === "abs") {
 				o[i] = Math.abs(a[i] - b[i]) * k;
 				o[i + 1] = Math.abs(a[i + 1] - b[i + 1]) * k;
@@ -123,6 +125,7 @@ function diffCanvas(fr, id) {
 			o[i + 3] = 255;
 		}
 		g.putImageData(out, 0, 0);
+		c.over = over;
 	}
 	fr.diffs.set(key, c);
 	return c;
@@ -155,10 +158,14 @@ const modeSel = sel("vw-mode", [["abs", "|difference| RGB"], ["lum", "|differenc
 const gainSel = sel("vw-gain", [1, 2, 4, 8, 16, 32, 64].map(g => [g, "gain \u00d7" + g]), S.gain, v => { S.gain = +v; redraw(); });
 const againstSel = sel("vw-against", sources.map(([i, t]) => [i, "against " + t]), S.against,
 	v => { S.against = +v; redraw(); });
+const thresholdInput = el("input", { type: "number", min: 0, max: 1, step: 0.001, value: S.threshold, class: "vw-threshold",
+	"aria-label": "threshold", title: "count pixels where any channel differs by more than this (0..1 of full scale), as idiff does",
+	onchange: () => { S.threshold = Math.max(0, Math.min(1, +thresholdInput.value || 0)); redraw(); } });
 const aSel = sel("vw-a", sources, S.a, v => { S.a = +v; redraw(); });
 const bSel = sel("vw-b", sources, S.b, v => { S.b = +v; redraw(); });
 const bar2 = el("div", { class: "vw-bar" }, el("span", { class: "vw-k" }, "zoom"), ...zoomButtons,
 	el("span", { class: "vw-k" }, "difference"), modeSel, gainSel, againstSel,
+	el("label", {}, "over ", thresholdInput),
 	el("span", { class: "vw-k" }, "A"), aSel, el("span", { class: "vw-k" }, "B"), bSel,
 	el("button", { type: "button", class: "vw-flip", onclick: () => flip(), title: "show A or B (key F)" }, "flip A/B (F)"));
 const help = el("p", { class: "vw-help" }, "Wheel or the buttons zoom (nearest neighbour) and drag pans, in every pane at once; " +
@@ -183,15 +190,18 @@ chart.setAttribute("class", "vw-chart");
 chart.setAttribute("viewBox", "0 0 420 170");
 chart.addEventListener("click", ev => chartClick(ev));
 const side = el("div", { class: "vw-side" }, inspectorHead, inspector,
-	el("div", { class: "vw-k" }, "PSNR per frame (click to pick the frame)"), chart);
+	el("div", { class: "vw-k" }, "PSNR per frame (click to pick the frame)"), chart,
+	el("ul", { class: "vw-legend" }, ...D.methods.map(m => el("li", {},
+		el("span", { class: "vw-swatch", style: "background:" + m.color }), m.label))));
 const grid = el("div", { class: "vw-grid" },
 	el("div", { class: "vw-h" }, "image"), el("div", { class: "vw-h vw-hd" }, "difference"), el("div", { class: "vw-h" }, "FLIP error map"));
 grid.append(pane("img", REF, label(REF)), el("div", { class: "vw-hole" }), el("div", { class: "vw-hole" }));
 D.methods.forEach((m, i) => grid.append(pane("img", i, m.label), pane("diff", i, ""), pane("flip", i, m.label + " FLIP")));
 const histogram = el("canvas", { class: "vw-hist", width: 720, height: 200 });
 const histCap = el("div", { class: "vw-cap" });
+const regions = el("div", { class: "vw-regions" });
 root.append(bar1, bar2, help, el("div", { class: "vw-top" }, abPane, side), grid,
-	el("figure", { class: "vw-histfig" }, histogram, histCap));
+	el("figure", { class: "vw-histfig" }, histogram, histCap), regions);
 
 /* Pane sizes: each image pixel one CSS pixel at 1x; panes no wider than a third of the page. */
 function layout() {
@@ -326,8 +336,13 @@ function draw() {
 		(S.showB ? "A: " + label(S.a) : "B: " + label(S.b));
 	abCap.dataset.showing = S.showB ? "B" : "A";
 	for (const p of panes) {
-		if (p.kind === "diff") p.cap.textContent = D.methods[p.id].label + " \u2212 " + (S.against === REF ? "reference" : D.methods[S.against].label) +
-			" (" + modeSel.selectedOptions[0].textContent + ", \u00d7" + S.gain + ")";
+		if (p.kind === "diff") {
+			const d = shown && diffCanvas(shown, p.id);
+			p.cap.textContent = D.methods[p.id].label + " \u2212 " + (S.against === REF ? "reference" : D.methods[S.against].label) +
+				" (" + modeSel.selectedOptions[0].textContent + ", \u00d7" + S.gain + ")" +
+				(d && d.over !== undefined ? "; " + d.over + " px (" + (100 * d.over / (W * H)).toFixed(2) + "%) over " + S.threshold : "");
+			p.cap.dataset.over = d && d.over !== undefined ? d.over : "";
+		}
 		const g = p.canvas.getContext("2d");
 		const dpr = p.canvas.width / p.cssW;
 		g.setTransform(1, 0, 0, 1, 0, 0);
@@ -422,7 +437,40 @@ function drawHistogram(fr) {
 		": pixel count \u00d7 error per bin (weighted, as NVIDIA's FLIP tool draws it); red line: mean " + fmt(mean, 4);
 }
 
+/* ---------------------------------------------------------------- worst regions first */
+/* Each region (report_regions.c: the tiles with the most FLIP error over every method and frame) as
+ * close-ups at 8x, the reference and every method side by side, in the frame where it is worst; a
+ * click shows that place and frame in the panes above at 8x. */
+function drawRegions() {
+	if (!D.regions.length) return;
+	regions.append(el("div", { class: "vw-k" }, "worst regions first: where the methods differ most from the reference " +
+		"(FLIP summed over every method and frame), at 8× in the frame where each is worst; click one to look around it"));
+	D.regions.forEach((g, k) => {
+		const row = el("div", { class: "vw-region", "data-region": k, title: "show it above at 8×", onclick: () => {
+			S.zoom = 8; S.cx = g.x + g.w / 2; S.cy = g.y + g.h / 2;
+			setFrame(g.ordinal);
+			root.scrollIntoView();
+		} });
+		row.append(el("div", { class: "vw-cap" }, "#" + (k + 1) + ": frame " + D.frames[g.ordinal] + ", pixels " + g.x + "–" +
+			(g.x + g.w - 1) + " × " + g.y + "–" + (g.y + g.h - 1) + ", mean FLIP " + g.flip_mean.toFixed(3)));
+		const crops = sources.map(([id, name]) => {
+			const c = el("canvas", { width: g.w * 8, height: g.h * 8, class: "vw-crop" });
+			row.append(el("figure", { class: "vw-pane" }, c, el("div", { class: "vw-cap" }, name)));
+			return [id, c];
+		});
+		regions.append(row);
+		loadFrame(g.ordinal).then(fr => {
+			if (!fr.ready) return;
+			for (const [id, c] of crops) {
+				const img = sourceImage(fr, id), gc = c.getContext("2d");
+				gc.imageSmoothingEnabled = false;
+				if (img) gc.drawImage(img, g.x, g.y, g.w, g.h, 0, 0, g.w * 8, g.h * 8);
+			}
+		});
+	});
+}
+
 layout();
 setFrame(0);
-loadFrame(0).then(() => { api.ready = true; redraw(); });
+loadFrame(0).then(() => { api.ready = true; redraw(); drawRegions(); });
 })();

@@ -220,13 +220,39 @@ def run_steps(v, shots=None, at=None):
     check(b.wait_for("!aalabViewer.state().playing", 5), "space pauses")
 
 
+TOP = os.environ.get("top_builddir", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+JOB = ["--scene", "moving-sphere", "--methods", "none,ssaa:4", "--frames", "3", "--size", "96x54",
+       "--reference-samples", "8", "--quiet"]
+
+
 def make_job(tmp):
-    top = os.environ.get("top_builddir", os.path.join(os.path.dirname(__file__), "..", ".."))
     job = os.path.join(tmp, "job")
-    subprocess.run([os.path.join(top, "aalab"), "run", "--scene", "moving-sphere", "--methods", "none,ssaa:4",
-                    "--frames", "3", "--size", "96x54", "--reference-samples", "8", "--quiet", "--out", job],
-                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([os.path.join(TOP, "aalab"), "run"] + JOB + ["--out", job], check=True, stdout=subprocess.DEVNULL)
     return job
+
+
+def through_daemon(browser):
+    """The same job run by aalabd: its dashboard links the report, which shows the viewer over HTTP."""
+    from daemon_lib import Daemon
+    d = Daemon(http=True)
+    try:
+        out = subprocess.run([os.path.join(TOP, "aalab"), "submit", "--watch", "--connect", "unix:" + d.socket] + JOB,
+                             check=True, stdout=subprocess.PIPE, text=True).stdout
+        job_id = out.split()[0]
+        base = "http://127.0.0.1:%d/" % d.http_port
+        browser.navigate(base)
+        link = "v1/jobs/%s/report.html" % job_id
+        check(browser.wait_for("!!document.querySelector('a[href=\"%s\"]')" % link),
+              "the dashboard links job %s's report" % job_id)
+        browser.navigate(base + link)
+        check(browser.wait_for("window.aalabViewer && aalabViewer.ready && aalabViewer.state().shown === 0"),
+              "the report served by aalabd loads its viewer (viewer/0000.js over HTTP)")
+        v = Viewer(browser, os.path.join(d.state, "jobs", job_id))
+        bad, seen = v.pane_mismatches("ab:0", v.png("frames", v.labels[-1], 0))
+        check(seen > 0 and bad == 0, "and its A/B pane shows %s frame 0 exactly (%d of %d differ)" % (v.labels[-1], bad, seen))
+        check(d.stop() == 0, "aalabd exits 0")
+    finally:
+        d.cleanup()
 
 
 def main():
@@ -246,6 +272,8 @@ def main():
         browser = cdp.Chromium()
         browser.navigate("file://" + os.path.join(job, "report.html"))
         run_steps(Viewer(browser, job), shots, at)
+        if "--report" not in args:
+            through_daemon(browser)
         errors = [e for e in browser.events if e.get("method") == "Runtime.exceptionThrown"]
         check(not errors, "no script errors on the page %s" % (json.dumps(errors)[:800] if errors else ""))
     finally:
