@@ -72,7 +72,9 @@ def read_png(path):
 class Viewer:
     def __init__(self, browser, job):
         self.b, self.job = browser, job
-        self.labels = [m["label"] for m in json.load(open(os.path.join(job, "results.json")))["methods"]]
+        results = json.load(open(os.path.join(job, "results.json")))
+        self.labels = [m["label"] for m in results["methods"]]
+        self.frames = results["methods"][0]["frames"]
         self.pngs = {}
 
     def png(self, kind, label, ordinal):
@@ -209,7 +211,68 @@ def run_steps(v, shots=None, at=None):
     expected = [[[min(255, abs(p - q) * 16) for p, q in zip(a, r)] for a, r in zip(ra, rr)] for ra, rr in zip(m0, ref0)]
     bad, seen = v.pane_mismatches("diff:0", expected)
     check(seen > 0 and bad == 0, "the difference pane is |%s - reference| x 16 (%d of %d differ)" % (v.labels[0], bad, seen))
+    over = sum(1 for ra, rr in zip(m0, ref0) for a, r in zip(ra, rr) if any(abs(p - q) > 2.55 for p, q in zip(a, r)))
+    shown_over = b.eval("document.querySelector('.vw-diff .vw-cap').dataset.over")
+    check(shown_over == str(over), "its caption counts %s pixels over 0.01 as idiff would (%d)" % (shown_over, over))
     shot("5-gain16")
+
+    # method against method: the difference of the first method against the second, then luminance only
+    def select(cls, value):
+        b.eval("(() => { const s = document.querySelector('.%s'); s.value = '%s'; s.dispatchEvent(new Event('change')); })()" % (cls, value))
+        b.eval("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    m1 = v.png("frames", v.labels[1], 0)
+    select("vw-against", 1)
+    expected = [[[min(255, abs(p - q) * 16) for p, q in zip(a, c)] for a, c in zip(ra, rc)] for ra, rc in zip(m0, m1)]
+    bad, seen = v.pane_mismatches("diff:0", expected)
+    check(seen > 0 and bad == 0, "against %s: the pane is |%s - %s| x 16 (%d of %d differ)" % (v.labels[1], v.labels[0], v.labels[1], bad, seen))
+    select("vw-mode", "lum")
+
+    def luma(c):
+        return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+    expected = [[[min(255, round(abs(luma(a) - luma(c)) * 16))] * 3 for a, c in zip(ra, rc)] for ra, rc in zip(m0, m1)]
+    w, h, data = v.pane_pixels("diff:0")
+    s = v.state()
+    ox, oy = math.floor(w / 2 - s["cx"] * 8 + 0.5), math.floor(h / 2 - s["cy"] * 8 + 0.5)
+    worst = max(abs(data[(y * w + x) * 4 + ch] - expected[(y - oy) // 8][(x - ox) // 8][ch])
+                for y in range(h) for x in range(w) for ch in range(3)
+                if 0 <= (y - oy) // 8 < len(m0) and 0 <= (x - ox) // 8 < len(m0[0]))
+    check(worst <= 1, "luminance only: |Y(a) - Y(b)| x 16, Rec. 709 luma (largest deviation %d, rounding)" % worst)
+    # A/B between two methods
+    select("vw-a", 0)
+    select("vw-b", 1)
+    bad, _ = v.pane_mismatches("ab:0", m1 if v.state()["showB"] else m0)
+    check(bad == 0, "A/B between %s and %s shows the chosen one (%d differ)" % (v.labels[0], v.labels[1], bad))
+
+    # worst regions: the first is the tile with the most FLIP over every method and frame, drawn at 8x
+    regions = b.eval("JSON.parse(document.getElementById('aa-viewer-data').textContent).regions")
+    magma = b.eval("JSON.parse(document.getElementById('aa-viewer-data').textContent).magma")
+    index = {}
+    for i in range(256):
+        index.setdefault(tuple(int(magma[6 * i + k:6 * i + k + 2], 16) for k in (0, 2, 4)), i)
+    totals = {}
+    for f in range(len(v.frames)):
+        for label in v.labels:
+            for y, row in enumerate(v.png("flip", label, f)):
+                for x, c in enumerate(row):
+                    totals[(x // 16, y // 16)] = totals.get((x // 16, y // 16), 0) + index.get(tuple(c), 0)
+    top = max(totals, key=totals.get)
+    check(regions and (regions[0]["x"], regions[0]["y"]) == (top[0] * 16, top[1] * 16),
+          "the first worst region is the tile with the most FLIP error, %s (page: %s)" % (top, regions[:1]))
+    if regions:
+        g = regions[0]
+        b.wait_for("document.querySelectorAll('.vw-region canvas').length > 0", 5)
+        crop = b.eval("(() => { const c = document.querySelector('.vw-region[data-region=\"0\"] canvas');"
+                      " return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data); })()")
+        refg = v.png("frames", None, g["ordinal"])
+        bad = sum(1 for y in range(g["h"] * 8) for x in range(g["w"] * 8)
+                  if crop[(y * g["w"] * 8 + x) * 4:(y * g["w"] * 8 + x) * 4 + 3] != refg[g["y"] + y // 8][g["x"] + x // 8])
+        check(bad == 0, "its reference close-up is the frame-%d reference at 8x (%d pixels differ)" % (g["ordinal"], bad))
+        shot("7-regions")
+        b.eval("document.querySelector('.vw-region[data-region=\"0\"]').scrollIntoView()")
+        r = v.rect('.vw-region[data-region="0"] .vw-cap')
+        b.click(r["x"] + 5, r["y"] + r["h"] / 2)
+        check(b.wait_for("aalabViewer.state().shown === %d && aalabViewer.state().zoom === 8 && aalabViewer.state().cx === %s"
+                         % (g["ordinal"], g["x"] + g["w"] / 2), 10), "a click on it shows that frame and place at 8x")
 
     # play: space starts, frames advance, space stops
     b.key(" ", "Space", 32, " ")
@@ -250,6 +313,12 @@ def through_daemon(browser):
         v = Viewer(browser, os.path.join(d.state, "jobs", job_id))
         bad, seen = v.pane_mismatches("ab:0", v.png("frames", v.labels[-1], 0))
         check(seen > 0 and bad == 0, "and its A/B pane shows %s frame 0 exactly (%d of %d differ)" % (v.labels[-1], bad, seen))
+        got = os.path.join(d.tmp, "got")
+        subprocess.run([os.path.join(TOP, "aalab"), "get", job_id, "--out", got, "--connect", "unix:" + d.socket],
+                       check=True, stdout=subprocess.DEVNULL)
+        same = open(os.path.join(got, "viewer", "0002.js"), "rb").read() == \
+            open(os.path.join(d.state, "jobs", job_id, "viewer", "0002.js"), "rb").read()
+        check(same, "aalab get downloads the viewer's frame scripts")
         check(d.stop() == 0, "aalabd exits 0")
     finally:
         d.cleanup()
