@@ -12,7 +12,7 @@ const ZOOMS = [1, 2, 4, 8, 16, 32];
 const S = {
 	frame: 0, shown: -1, zoom: 1, cx: W / 2, cy: H / 2, px: -1, py: -1, hover: false,
 	mode: "abs", gain: 4, against: REF, threshold: 0.01, a: Math.max(0, M - 1), b: REF, showB: false,
-	playing: false, fps: D.fps, playedFrames: 0, playStart: 0, measuredFps: 0
+	playing: false, fps: D.fps, playedFrames: 0, playStart: 0, measuredFps: 0, drawMs: 0
 };
 const api = window.aalabViewer = { ready: false, state: () => Object.assign({}, S, view()) };
 
@@ -295,7 +295,7 @@ function play(on) {
 	S.playing = on && N > 1;
 	playButton.textContent = S.playing ? "\u275a\u275a pause" : "\u25b6 play";
 	cancelAnimationFrame(playTimer);
-	if (!S.playing) return;
+	if (!S.playing) return redraw();
 	for (let f = 0; f < N; f++) loadFrame((S.frame + f) % N); /* all of them: playback must not wait */
 	let last = performance.now();
 	S.playedFrames = 0;
@@ -326,6 +326,11 @@ function paneSource(fr, p) {
 	return diffCanvas(fr, p.id);
 }
 function draw() {
+	const t0 = performance.now();
+	drawPanes();
+	S.drawMs = performance.now() - t0; /* what a shown frame costs: playback cannot beat 1000 / drawMs */
+}
+function drawPanes() {
 	const fr = frames[S.frame];
 	if (fr && fr.ready) S.shown = S.frame;
 	const shown = S.shown >= 0 ? frames[S.shown] : null;
@@ -360,7 +365,10 @@ function draw() {
 			g.strokeRect(S.px, S.py, 1, 1);
 		}
 	}
-	if (shown) { inspect(shown); drawHistogram(shown); }
+	if (shown) {
+		if (S.hover || !S.playing) inspect(shown);
+		if (!S.playing) drawHistogram(shown); /* per frame it would cost playback a third of its rate */
+	}
 	drawChart();
 }
 const fmt = (v, d) => Number.isFinite(v) ? v.toFixed(d) : "\u2014";
