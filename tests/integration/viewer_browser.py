@@ -155,6 +155,21 @@ def run_steps(v, shots=None, at=None):
     check(seen > 0 and bad == 0, "the small panes zoom with it (%s: %d of %d differ)" % (small, bad, seen))
     shot("2-zoom8")
 
+    # drag: 16 CSS pixels left and 8 up at 8x move the view 2 image pixels right and 1 down, everywhere
+    before = v.state()
+    b.mouse("mouseMoved", mx, my)
+    b.mouse("mousePressed", mx, my, button="left", clickCount=1)
+    b.mouse("mouseMoved", mx - 16, my - 8, buttons=1)
+    b.mouse("mouseReleased", mx - 16, my - 8, button="left", clickCount=1)
+    b.mouse("mouseMoved", 2, 2)  # off the panes: no outline on the pixel under the cursor
+    b.wait_for("!aalabViewer.state().hover", 5)
+    s = v.state()
+    check((s["cx"] - before["cx"], s["cy"] - before["cy"]) == (2, 1), "a drag pans by the dragged distance / zoom "
+          "(centre moved %+g, %+g)" % (s["cx"] - before["cx"], s["cy"] - before["cy"]))
+    bad, seen = v.pane_mismatches("ab:0", v.png("frames", a_label, 0))
+    bad2, seen2 = v.pane_mismatches("img:0", v.png("frames", v.labels[0], 0))
+    check(seen and seen2 and bad == bad2 == 0, "and every pane shows the panned view (%d, %d pixels differ)" % (bad, bad2))
+
     b.key("f", "KeyF", 70, "f")
     b.wait_for("aalabViewer.state().showB", 5)
     ref0 = v.png("frames", None, 0)
@@ -214,6 +229,11 @@ def run_steps(v, shots=None, at=None):
     over = sum(1 for ra, rr in zip(m0, ref0) for a, r in zip(ra, rr) if any(abs(p - q) > 2.55 for p, q in zip(a, r)))
     shown_over = b.eval("document.querySelector('.vw-diff .vw-cap').dataset.over")
     check(shown_over == str(over), "its caption counts %s pixels over 0.01 as idiff would (%d)" % (shown_over, over))
+    b.eval("(() => { const s = document.querySelector('.vw-threshold'); s.value = '0.05'; s.dispatchEvent(new Event('change')); })()")
+    b.eval("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    over = sum(1 for ra, rr in zip(m0, ref0) for a, r in zip(ra, rr) if any(abs(p - q) > 12.75 for p, q in zip(a, r)))
+    shown_over = b.eval("document.querySelector('.vw-diff .vw-cap').dataset.over")
+    check(shown_over == str(over), "and %s over 0.05 (%d)" % (shown_over, over))
     shot("5-gain16")
 
     # method against method: the difference of the first method against the second, then luminance only
@@ -316,10 +336,13 @@ def through_daemon(browser):
         got = os.path.join(d.tmp, "got")
         subprocess.run([os.path.join(TOP, "aalab"), "get", job_id, "--out", got, "--connect", "unix:" + d.socket],
                        check=True, stdout=subprocess.DEVNULL)
-        same = open(os.path.join(got, "viewer", "0002.js"), "rb").read() == \
+        mine = os.path.join(got, "viewer", "0002.js")
+        same = os.path.exists(mine) and open(mine, "rb").read() == \
             open(os.path.join(d.state, "jobs", job_id, "viewer", "0002.js"), "rb").read()
         check(same, "aalab get downloads the viewer's frame scripts")
         check(d.stop() == 0, "aalabd exits 0")
+        log = d.read_log()
+        check("Sanitizer" not in log and "runtime error" not in log, "no sanitizer report in aalabd's log")
     finally:
         d.cleanup()
 
