@@ -332,7 +332,10 @@ function draw() {
 }
 function drawPanes() {
 	const fr = frames[S.frame];
-	if (fr && fr.ready) S.shown = S.frame;
+	if (fr && fr.ready) {
+		if (S.shown < 0) api.readyAt = performance.now(); /* the first frame on screen, ms after navigation */
+		S.shown = S.frame;
+	}
 	const shown = S.shown >= 0 ? frames[S.shown] : null;
 	frameText.textContent = "frame " + D.frames[S.frame] + " (" + (S.frame + 1) + " of " + N + ")" +
 		(S.shown !== S.frame ? ", loading\u2026" : "") + (S.playing && S.measuredFps ? ", playing at " + S.measuredFps.toFixed(1) + " fps" : "");
