@@ -1,7 +1,6 @@
 /* report.html's viewer parts on hand-made results: the warnings panel (each warning and its absence),
  * the viewer's JSON data (escaped so no label ends the script), viewer/NNNN.js (the frame's PNG bytes
  * as data: URLs), the worst regions read back from FLIP maps, and the EXR of a frame event. */
-#define _GNU_SOURCE
 #include <ftw.h>
 #include <math.h>
 #include <setjmp.h>
