@@ -145,6 +145,17 @@ static void test_warnings(void **state)
 	free(html);
 	set_times(&sum[1], 1.6, 2.0, 2.5);
 
+	/* the scene's own warnings come first, escaped, and the count of those not kept */
+	r->warning_count = 1;
+	snprintf(r->warnings[0], sizeof r->warnings[0], "material <glass> approximated");
+	r->warnings_dropped = 4;
+	html = warnings_of(r, sum);
+	assert_non_null(strstr(html, "<b>Scene</b>: material &lt;glass&gt; approximated"));
+	assert_non_null(strstr(html, "... and 4 more scene warnings"));
+	free(html);
+	r->warning_count = 0;
+	r->warnings_dropped = 0;
+
 	r->methods[1].frames[1].nonfinite = 7;
 	r->timestamp_period_ns = NAN;
 	html = warnings_of(r, sum);
