@@ -52,7 +52,8 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 		const char *name = json_string_value(f);
 		/* a suite's case folders hold images as a job's folder does */
 		const char *inner = name && !strncmp(name, "cases/", 6) && strchr(name + 6, '/') ? strchr(name + 6, '/') + 1 : name;
-		bool image = inner && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5));
+		bool image = inner && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5) ||
+				      !strncmp(inner, "viewer/", 7));
 		if (!name || (image && !images) || strstr(name, "..") || name[0] == '/')
 			continue;
 		char *data;

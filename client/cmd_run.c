@@ -49,6 +49,8 @@ const char aa_run_help[] =
 	"                          (docs/farm.md)\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
+	"  --exr                   also write every frame's linear colour as float EXR, exr/METHOD/NNNN.exr\n"
+	"                          (for oiiotool, idiff, tev); runs in this process\n"
 	"  --json                  print results.json to standard output instead of the table\n"
 	"  --quiet                 no progress display\n"
 	"  --local                 run in this process even when aalabd is running\n"
@@ -61,16 +63,31 @@ struct run_output {
 	const char *dir;
 	const struct aa_job_spec *spec;
 	bool images;
+	bool exr;  /* --exr: exr/<method dir>/NNNN.exr beside the PNGs */
 	bool quiet;
 	volatile int frames_written; /* what Ctrl-C reports as kept */
 	int failed_writes;
 	struct aa_error write_err;
 };
 
+/* --exr: beside the PNGs, so a suite's case keeps its EXRs in its own folder */
+static int write_exr(struct run_output *o, const struct aa_event *ev)
+{
+	char rel[600], dir[4200];
+	if (!o->spec->is_suite)
+		return aa_results_write_event_exr(o->dir, ev, &o->write_err);
+	aa_case_relpath(o->spec, ev->case_index, rel, sizeof rel);
+	if ((size_t)snprintf(dir, sizeof dir, "%s/%s", o->dir, rel) >= sizeof dir)
+		return aa_error_set(&o->write_err, AA_ERR_IO, "", "path %s/%s is too long", o->dir, rel);
+	return aa_results_write_event_exr(dir, ev, &o->write_err);
+}
+
 static int on_event(const struct aa_event *ev, void *user)
 {
 	struct run_output *o = user;
 	if (o->images && aa_suite_write_event_images(o->dir, o->spec, ev, &o->write_err))
+		o->failed_writes++;
+	else if (o->exr && write_exr(o, ev))
 		o->failed_writes++;
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
@@ -108,17 +125,18 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 
 int cmd_run(int argc, char **argv)
 {
-	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD };
+	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD, OPT_EXR };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
 		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP},
-		{"force", no_argument, 0, OPT_FORCE}, {"shard", required_argument, 0, OPT_SHARD}, {0, 0, 0, 0},
+		{"force", no_argument, 0, OPT_FORCE}, {"shard", required_argument, 0, OPT_SHARD},
+		{"exr", no_argument, 0, OPT_EXR}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
 	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
-	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false;
+	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false, exr = false;
 	struct aa_out_dir od = {0};
 	struct aa_job_spec spec;
 	bool spec_parsed = false;
@@ -139,9 +157,14 @@ int cmd_run(int argc, char **argv)
 		case OPT_CONNECT: connect = optarg; break;
 		case OPT_FORCE: force = true; break;
 		case OPT_SHARD: shard_text = optarg; break;
+		case OPT_EXR: exr = true; break;
 		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(aa_run_help, stderr); goto out;
 		}
+	}
+	if (exr && connect) { /* the EXRs are written from the frames in this process's memory */
+		fprintf(stderr, "aalab run: --exr runs the job in this process and cannot go with --connect\n");
+		goto out;
 	}
 	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
 	if (!job)
@@ -178,7 +201,8 @@ int cmd_run(int argc, char **argv)
 	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device && !shard_text && (!user_methods || connect);
+	/* --exr: the frames are in this process */
+	bool remote = !local && !device && !exr && !shard_text && (!user_methods || connect);
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;
 		aa_job_case(&spec, i, &one);
@@ -241,7 +265,8 @@ int cmd_run(int argc, char **argv)
 		status = err.path[0] ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;
 	}
-	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames, .quiet = quiet};
+	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames,
+				 .exr = exr, .quiet = quiet};
 	int frames_total = 0; /* images of every case: each frame's reference and methods */
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;

@@ -78,6 +78,10 @@ int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *o
 			ok = digits >= 4 && digits <= 9 && strcmp(file + digits, linear ? ".rgba16f" : ".png") == 0;
 		}
 	}
+	if (!ok && !strncmp(inner, "viewer/", 7)) { /* report.html's frame scripts (engine/results/report_viewer.c) */
+		const size_t digits = strspn(inner + 7, "0123456789");
+		ok = digits >= 4 && digits <= 9 && strcmp(inner + 7 + digits, ".js") == 0;
+	}
 	if (!ok || !name_ok(id, strlen(id)))
 		return -1;
 	return (size_t)snprintf(out, size, "%s/%s/%s", jobs_dir, id, rel) < size ? 0 : -1;
@@ -284,6 +288,8 @@ static void list_files(const char *base, const char *rel, json_t *out, int depth
 			list_files(base, sub, out, -1);
 		else if (depth == -1)
 			list_files(base, sub, out, 0);
+		else if (depth == 0 && !strcmp(de->d_name, "viewer")) /* viewer/NNNN.js: files right below it */
+			list_files(base, sub, out, 2);
 		else if (depth < 2 && (depth > 0 || !strcmp(de->d_name, "frames") || !strcmp(de->d_name, "diff") ||
 				       !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear")))
 			list_files(base, sub, out, depth + 1);
@@ -334,7 +340,7 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 	}
 	if (job_file_path(c->d->store->dir, id, file, path, sizeof path)) {
 		protocol_error(c, tag, "invalid", "file", "not a file of a job: results.json, report.html, events.jsonl, "
-			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png or linear/NAME/NNNN.rgba16f");
+			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png, linear/NAME/NNNN.rgba16f or viewer/NNNN.js");
 		return;
 	}
 	char *data;

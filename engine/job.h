@@ -208,6 +208,7 @@ struct aa_job_result {
 	struct aa_method_result methods[AA_MAX_METHODS];
 	double wall_seconds;
 	char started_at[32];       /* ISO 8601 UTC */
+	double fps;                /* the scene's frames per second (report.html plays frames at it) */
 };
 
 void aa_job_result_free(struct aa_job_result *r);

@@ -429,6 +429,8 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	bool hold_first = strcmp(spec->path, "static") == 0;
 	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
 	double fps = js.scene && js.scene->fps > 0 ? js.scene->fps : 30.0;
+	if (js.result)
+		js.result->fps = fps;
 	/* a shard's warm-up frames come first, at negative ordinals: history only (shard_warmup_frame) */
 	const int start = -spec->warmup_frames;
 	for (int ordinal = start; rc == 0 && ordinal < spec->frames; ordinal++) {

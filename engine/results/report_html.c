@@ -1,6 +1,7 @@
-/* report.html: one self-contained page (inline CSS and SVG, no scripts, no external resources) showing
- * what each method's accuracy costs: the summary table, cost-vs-accuracy and error-threshold charts,
- * PSNR per frame, the frame plan and each method's image next to the reference and their difference. */
+/* report.html: one self-contained page (inline CSS, SVG and script, nothing loaded but the job's own
+ * files beside it) showing what each method's accuracy costs: warnings, the image viewer
+ * (report_viewer.c), the summary table, cost-vs-accuracy and error-threshold charts, PSNR per frame and
+ * the frame plan. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -581,17 +582,6 @@ static void plan_table(FILE *o, const struct aa_job_result *r)
 	fputs("</table>\n", o);
 }
 
-static void image_figure(FILE *o, const char *relpath, const char *caption)
-{
-	fputs("<figure><img loading=\"lazy\" src=\"", o);
-	esc(o, relpath);
-	fputs("\" alt=\"", o);
-	esc(o, caption);
-	fputs("\"><figcaption>", o);
-	esc(o, caption);
-	fputs("</figcaption></figure>\n", o);
-}
-
 static void method_sections(FILE *o, const struct aa_job_result *r)
 {
 	for (int i = 0; i < r->method_count; i++) {
@@ -622,31 +612,7 @@ static void method_sections(FILE *o, const struct aa_job_result *r)
 			fprintf(o, " %.2f MiB", (double)m->memory[k].bytes / 1048576.0);
 		}
 		fputs("</p>\n", o);
-		if (!r->spec.keep_frames || m->frame_count == 0) {
-			fputs("<p class=\"note\">No images: the job did not keep frames.</p></div>\n", o);
-			continue;
-		}
-		const int ord = m->frame_count / 2; /* the middle frame: past any start-up of temporal methods */
-		const struct aa_metrics *mt = &m->frames[ord].metrics;
-		char rel[512], caption[300];
-		fprintf(o, "<p class=\"meta\">Frame %d: PSNR ", m->frames[ord].frame);
-		put_psnr(o, mt->psnr, mt->identical);
-		fputs(mt->identical ? ", SSIM " : " dB, SSIM ", o);
-		put_num(o, mt->ssim, 4);
-		fputs(", FLIP ", o);
-		put_num(o, mt->flip_mean, 4);
-		fputs("</p>\n<div class=\"imgs\">\n", o);
-		aa_results_frame_relpath("frames", m->label, ord, rel, sizeof rel);
-		snprintf(caption, sizeof caption, "%s, frame %d", m->label, m->frames[ord].frame);
-		image_figure(o, rel, caption);
-		aa_results_frame_relpath("frames", "reference", ord, rel, sizeof rel);
-		snprintf(caption, sizeof caption, "reference (%d samples)", r->reference.samples);
-		image_figure(o, rel, caption);
-		aa_results_frame_relpath("diff", m->label, ord, rel, sizeof rel);
-		image_figure(o, rel, "|difference| \xc3\x97 4");
-		aa_results_frame_relpath("flip", m->label, ord, rel, sizeof rel);
-		image_figure(o, rel, "FLIP error map (dark: none, bright: most)");
-		fputs("</div></div>\n", o);
+		fputs("</div>\n", o); /* the images are in the viewer (report_viewer.c) */
 	}
 }
 
@@ -680,20 +646,15 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 		fputs(" \xc2\xb7 ", o);
 		esc(o, view.started_at);
 	}
-	fputs("</p>\n<div class=\"cards\">\n", o);
+	fputs("</p>\n", o);
+	aa_report_write_warnings(o, &view, sum);
+	fputs("<div class=\"cards\">\n", o);
 	summary_cards(o, &view);
-	fputs("</div>\n", o);
-	if (view.warning_count > 0) { /* what the scene drew differently from its files, before any number */
-		fputs("<h2 id=\"warnings\">Warnings</h2>\n<p class=\"note\">Loading the scene dropped or approximated "
-		      "these; the numbers below are for the scene as drawn.</p>\n<ul>\n", o);
-		for (int i = 0; i < view.warning_count && i < AA_MAX_WARNINGS; i++) {
-			fputs("<li>", o);
-			esc(o, view.warnings[i]);
-			fputs("</li>\n", o);
-		}
-		if (view.warnings_dropped > 0)
-			fprintf(o, "<li>... and %d more</li>\n", view.warnings_dropped);
-		fputs("</ul>\n", o);
+	fputs("</div>\n<h2 id=\"images\">Images</h2>\n", o);
+	if (aa_report_write_viewer(o, &view, dir, err)) {
+		fclose(o);
+		free(buf);
+		return -1;
 	}
 	fputs("<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
 	cost_table(o, &view, sum);
@@ -708,7 +669,7 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	fputs("<h2 id=\"plan\">Frame plan</h2>\n<p class=\"note\">Only the passes the scene and the methods need run; "
 	      "each row says why.</p>\n", o);
 	plan_table(o, &view);
-	fputs("<h2 id=\"images\">Images</h2>\n", o);
+	fputs("<h2 id=\"methods\">Methods</h2>\n", o);
 	method_sections(o, &view);
 	fputs("<footer>Every number on this page comes from results.json in the same directory. PSNR of identical "
 	      "images is infinite and shown as &ldquo;identical&rdquo;.</footer>\n</main></body>\n</html>\n", o);
@@ -716,7 +677,10 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 		free(buf);
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing report.html");
 	}
-	const int rc = aa_results_write_file_atomic(dir, "report.html", buf, size, err);
+	/* the frames' scripts first: the page never names a script that is not there yet */
+	int rc = aa_report_write_viewer_frames(&view, dir, err);
+	if (rc == 0)
+		rc = aa_results_write_file_atomic(dir, "report.html", buf, size, err);
 	free(buf);
 	return rc;
 }

@@ -42,4 +42,20 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 extern const char aa_report_style[];
 void aa_report_esc(FILE *o, const char *s);
 
+/* exr/<dirname>/<NNNN>.exr: the frame's linear colour as float EXR (aalab run --exr; exr_frames.c). */
+void aa_results_exr_relpath(const char *label, int ordinal, char *out, size_t size);
+/* Writes the EXR of a reference or method frame event (its linear image); other events write nothing. */
+int aa_results_write_event_exr(const char *dir, const struct aa_event *ev, struct aa_error *err);
+
+/* report.html's image viewer (report_viewer.c): its section of the page (data, viewer.css, viewer.js),
+ * and viewer/NNNN.js beside the page, one per frame, carrying the frame's PNGs (read from dir). */
+int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* The count square tiles (side tile) where the methods' FLIP maps in dir sum highest over every method and
+ * frame, worst first: [{x, y, w, h, ordinal (the frame where the tile is worst), flip_mean}]; empty
+ * without kept frames or when a map cannot be read (report_regions.c). */
+json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count);
+int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
+void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
+
 #endif

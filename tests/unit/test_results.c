@@ -523,21 +523,23 @@ static void test_report_html(void **state)
 	for (const char *p = html; (p = strstr(p, "<svg")); p++)
 		svgs++;
 	assert_int_equal(svgs, 3);
-	/* The hostile label is text, never markup, and there is no script at all. */
-	assert_null(strstr(html, "<script"));
+	/* The hostile label is text, never markup: escaped in HTML, \u003c in the viewer's JSON; the only
+	 * scripts are the viewer's data and code, inline (test_report_viewer.c tests them). */
+	assert_null(strstr(html, "<script>alert"));
+	assert_null(strstr(html, "<script src"));
 	assert_non_null(strstr(html, "&lt;script&gt;alert(1)&lt;/script&gt;"));
+	assert_non_null(strstr(html, "\\u003cscript>alert(1)\\u003c/script>"));
 	assert_non_null(strstr(html, "unit &amp; &lt;test&gt;"));
 	assert_non_null(strstr(html, ">identical<"));
-	/* Images of the middle frame, relative to the job directory, and nothing from elsewhere. */
-	assert_non_null(strstr(html, "src=\"frames/fxaa_12_quality-ultra_auth-true/0001.png\""));
-	assert_non_null(strstr(html, "src=\"frames/reference/0001.png\""));
-	assert_non_null(strstr(html, "src=\"diff/fxaa_12_quality-ultra_auth-true/0001.png\""));
+	/* The viewer names its methods' image folders; nothing comes from elsewhere. */
+	assert_non_null(strstr(html, "\"dir\":\"fxaa_12_quality-ultra_auth-true\""));
+	assert_non_null(strstr(html, "<section id=\"viewer\""));
 	assert_null(strstr(html, "http://example"));
 	assert_null(strstr(html, "src=\"http"));
 	assert_null(strstr(html, "href=\"http"));
 	/* No non-finite number reached a coordinate or a cell. */
 	assert_false(has_nonfinite_text(html));
-	assert_int_equal(count_entries(dir), 1);
+	assert_int_equal(count_entries(dir), 2); /* report.html and viewer/ (one script per frame) */
 	free(html);
 
 	/* One frame, no kept frames, no methods' data: still a page, and no per-frame chart. */
@@ -548,7 +550,7 @@ static void test_report_html(void **state)
 	assert_int_equal(aa_report_write_html(r, dir, &err), 0);
 	html = read_all(path);
 	assert_null(strstr(html, "<img"));
-	assert_non_null(strstr(html, "did not keep frames"));
+	assert_non_null(strstr(html, "\"images\":false"));
 	assert_false(has_nonfinite_text(html));
 	free(html);
 
