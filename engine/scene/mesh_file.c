@@ -157,7 +157,7 @@ static int import_error(struct loader *L)
 static int check_raw(struct loader *L)
 {
 	for (unsigned i = 0; i < L->ai->mNumMeshes; i++) {
-		const struct aiMesh *m = L->ai->mMeshes[i];
+		struct aiMesh *m = L->ai->mMeshes[i];
 		if (m->mNumAnimMeshes)
 			return FAIL(L, AA_ERR_INVALID, "mesh '%s' has morph targets, which aalab does not support",
 				    m->mName.data);
@@ -170,11 +170,22 @@ static int check_raw(struct loader *L)
 				return FAIL(L, AA_ERR_INVALID, "mesh '%s' vertex %u is at (%g, %g, %g): positions must be within "
 					    "%g of the origin", m->mName.data, v, p->x, p->y, p->z, POSITION_MAX);
 		}
-		for (unsigned f = 0; f < m->mNumFaces; f++)
-			for (unsigned k = 0; k < m->mFaces[f].mNumIndices; k++)
+		/* An importer can leave the mesh's primitive types at odds with its faces (fuzz_mesh found an OFF
+		 * file that does), and assimp's triangulation then aborts the process on an assertion: the types
+		 * are set again from the faces themselves. */
+		unsigned types = 0;
+		for (unsigned f = 0; f < m->mNumFaces; f++) {
+			unsigned n = m->mFaces[f].mNumIndices;
+			if (n == 0)
+				return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u has no vertices", m->mName.data, f);
+			types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
+					 : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
+			for (unsigned k = 0; k < n; k++)
 				if (m->mFaces[f].mIndices[k] >= m->mNumVertices)
 					return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u names vertex %u, but the mesh has %u "
 						    "vertices", m->mName.data, f, m->mFaces[f].mIndices[k], m->mNumVertices);
+		}
+		m->mPrimitiveTypes = types;
 	}
 	return 0;
 }
