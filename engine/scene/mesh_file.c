@@ -185,7 +185,9 @@ static int check_raw(struct loader *L)
 					return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u names vertex %u, but the mesh has %u "
 						    "vertices", m->mName.data, f, m->mFaces[f].mIndices[k], m->mNumVertices);
 		}
-		m->mPrimitiveTypes = types;
+		if (types) /* a mesh without faces keeps the importer's types: 0 makes post-processing fail, and
+			    * assimp 5.2 then crashes freeing the scene (an OBJ of vertices alone, fuzz_mesh) */
+			m->mPrimitiveTypes = types;
 	}
 	return 0;
 }
