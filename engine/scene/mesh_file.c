@@ -105,6 +105,30 @@ __attribute__((format(printf, 3, 4))) static int fail_file(struct loader *L, enu
 /* ---------------------------------------------------------------- before assimp */
 
 /* OBJ: assimp goes on silently without a missing .mtl; aalab names it (or warns, when asked). */
+/* A PLY header is ASCII text up to end_header. assimp 5.2's PLY reader loops without end on a header
+ * with other bytes in a property line (fuzz_mesh), which would hang whoever loads the scene, so such a
+ * header is refused before assimp reads the file. */
+static int check_ply_header(struct loader *L)
+{
+	FILE *f = fopen(L->path, "rb");
+	if (!f)
+		return FAIL(L, AA_ERR_IO, "cannot open: %s", strerror(errno));
+	char line[4096];
+	int rc = 0;
+	for (int n = 1; fgets(line, sizeof line, f); n++) {
+		for (const unsigned char *c = (const unsigned char *)line; *c; c++)
+			if (!(isprint(*c) || *c == '\n' || *c == '\r' || *c == '\t')) {
+				rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d holds a byte that is not ASCII text "
+					  "(0x%02x)", n, *c);
+				break;
+			}
+		if (rc || strncmp(line, "end_header", 10) == 0)
+			break;
+	}
+	fclose(f);
+	return rc;
+}
+
 static int check_obj_libraries(struct loader *L)
 {
 	FILE *f = fopen(L->path, "r");
@@ -934,6 +958,8 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 		rc = aa_gltf_check(s, scene, path, shown, base_dir, &L.gltf_info);
 	else if (ends_with(path, ".obj"))
 		rc = check_obj_libraries(&L);
+	else if (ends_with(path, ".ply"))
+		rc = check_ply_header(&L);
 	if (rc == 0 && !(L.ai = aiImportFile(path, 0)))
 		rc = import_error(&L);
 	if (rc == 0)
