@@ -965,11 +965,14 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 	if (rc == 0)
 		rc = check_raw(&L);
 	/* FlipUVs puts v = 0 at the top of the image, as glTF and aalab's textures have it */
-	if (rc == 0 && !aiApplyPostProcessing(L.ai, aiProcess_Triangulate | aiProcess_SortByPType |
-							    aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices |
-							    aiProcess_FlipUVs)) {
-		L.ai = NULL; /* freed by assimp when post-processing fails */
-		rc = import_error(&L);
+	/* The file is read again with the post-processing, not post-processed in place: when
+	 * aiApplyPostProcessing fails, assimp 5.2 crashes freeing the scene (fuzz_mesh), while a failing
+	 * aiImportFile returns NULL. The checks above ran on the raw import. */
+	if (rc == 0) {
+		aiReleaseImport(L.ai);
+		if (!(L.ai = aiImportFile(path, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_GenSmoothNormals |
+						      aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs)))
+			rc = import_error(&L);
 	}
 	if (rc == 0)
 		rc = build_nodes(&L) || size_parts(&L, max_triangles) || build_parts(&L, &first_part);
