@@ -124,6 +124,16 @@ static int check_ply_header(struct loader *L)
 			}
 		if (rc || strncmp(line, "end_header", 10) == 0)
 			break;
+		/* and every line one of the header's keywords (a misspelt one made assimp loop too) */
+		static const char *const keywords[] = {"ply", "format ", "comment", "obj_info", "element ", "property "};
+		bool known = false;
+		for (size_t k = 0; k < sizeof keywords / sizeof keywords[0]; k++)
+			known |= strncmp(line, keywords[k], strlen(keywords[k])) == 0;
+		if (!known) {
+			rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d is not one of ply, format, comment, obj_info, "
+				  "element, property, end_header", n);
+			break;
+		}
 	}
 	fclose(f);
 	return rc;
