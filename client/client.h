@@ -56,7 +56,8 @@ extern const char aa_merge_help[], aa_slurm_help[];
 	{"methods", required_argument, 0, AA_OPT_JOB}, {"frames", required_argument, 0, AA_OPT_JOB}, \
 	{"first-frame", required_argument, 0, AA_OPT_JOB}, {"size", required_argument, 0, AA_OPT_JOB}, \
 	{"reference-samples", required_argument, 0, AA_OPT_JOB}, {"repeat", required_argument, 0, AA_OPT_JOB}, \
-	{"label", required_argument, 0, AA_OPT_JOB}, {"baseline", required_argument, 0, AA_OPT_JOB}
+	{"label", required_argument, 0, AA_OPT_JOB}, {"baseline", required_argument, 0, AA_OPT_JOB}, \
+	{"over-threshold", required_argument, 0, AA_OPT_JOB}
 int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *job);
 /* A job file, or the suite of that name ("smoke": suites/smoke.json) when no such file exists. */
 json_t *aa_job_load_file(const char *cmd, const char *path);

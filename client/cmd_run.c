@@ -37,6 +37,9 @@ const char aa_run_help[] =
 	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
 	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n"
 	"                          repeatable, stored in results.json (job field labels)\n"
+	"  --over-threshold X      count the pixels where any of R,G,B differs from the reference by more\n"
+	"                          than X of full scale, as idiff does (0..1, default 0.01; job field\n"
+	"                          over_threshold); results.json and the table's %px column\n"
 	"  --baseline JOB          aalabd only: compare the finished job with JOB, a job id or\n"
 	"                          latest:KEY=VALUE (job field baseline)\n"
 	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS); written to a\n"
@@ -50,7 +53,7 @@ const char aa_run_help[] =
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
 	"  --exr                   also write every frame's linear colour as float EXR, exr/METHOD/NNNN.exr\n"
-	"                          (for oiiotool, idiff, tev); runs in this process\n"
+	"                          (for oiiotool, idiff, tev; job field exr_frames)\n"
 	"  --json                  print results.json to standard output instead of the table\n"
 	"  --quiet                 no progress display\n"
 	"  --local                 run in this process even when aalabd is running\n"
@@ -63,31 +66,16 @@ struct run_output {
 	const char *dir;
 	const struct aa_job_spec *spec;
 	bool images;
-	bool exr;  /* --exr: exr/<method dir>/NNNN.exr beside the PNGs */
 	bool quiet;
 	volatile int frames_written; /* what Ctrl-C reports as kept */
 	int failed_writes;
 	struct aa_error write_err;
 };
 
-/* --exr: beside the PNGs, so a suite's case keeps its EXRs in its own folder */
-static int write_exr(struct run_output *o, const struct aa_event *ev)
-{
-	char rel[600], dir[4200];
-	if (!o->spec->is_suite)
-		return aa_results_write_event_exr(o->dir, ev, &o->write_err);
-	aa_case_relpath(o->spec, ev->case_index, rel, sizeof rel);
-	if ((size_t)snprintf(dir, sizeof dir, "%s/%s", o->dir, rel) >= sizeof dir)
-		return aa_error_set(&o->write_err, AA_ERR_IO, "", "path %s/%s is too long", o->dir, rel);
-	return aa_results_write_event_exr(dir, ev, &o->write_err);
-}
-
 static int on_event(const struct aa_event *ev, void *user)
 {
 	struct run_output *o = user;
 	if (o->images && aa_suite_write_event_images(o->dir, o->spec, ev, &o->write_err))
-		o->failed_writes++;
-	else if (o->exr && write_exr(o, ev))
 		o->failed_writes++;
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
@@ -162,8 +150,10 @@ int cmd_run(int argc, char **argv)
 		default: fputs(aa_run_help, stderr); goto out;
 		}
 	}
-	if (exr && connect) { /* the EXRs are written from the frames in this process's memory */
-		fprintf(stderr, "aalab run: --exr runs the job in this process and cannot go with --connect\n");
+	if (exr) /* the job field: aalabd writes them as this process would (exr/METHOD/NNNN.exr) */
+		json_object_set_new(overrides, "exr_frames", json_true());
+	if (exr && !images) {
+		fprintf(stderr, "aalab run: --exr writes images and cannot go with --no-images\n");
 		goto out;
 	}
 	json_t *job = aa_job_build("run", argc, argv, optind, overrides);
@@ -201,8 +191,7 @@ int cmd_run(int argc, char **argv)
 	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	/* --exr: the frames are in this process */
-	bool remote = !local && !device && !exr && !shard_text && (!user_methods || connect);
+	bool remote = !local && !device && !shard_text && (!user_methods || connect);
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;
 		aa_job_case(&spec, i, &one);
@@ -266,7 +255,7 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames,
-				 .exr = exr, .quiet = quiet};
+				 .quiet = quiet};
 	int frames_total = 0; /* images of every case: each frame's reference and methods */
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;

@@ -11,7 +11,7 @@
 static const char submit_help[] =
 	"usage: aalab submit [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N]\n"
 	"                    [--first-frame N] [--size WxH] [--reference-samples N] [--repeat N]\n"
-	"                    [--scene-file FILE]\n"
+	"                    [--over-threshold X] [--scene-file FILE]\n"
 	"                    [--watch] [--connect ADDRESS] [--json] [--quiet]\n"
 	"\n"
 	"Queues a job on aalabd and prints its id. --scene-file sends your own scene file with the job.\n"

@@ -67,6 +67,17 @@ int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *jo
 		json_object_set_new(labels, label[0].key, json_string(label[0].value));
 		return 0;
 	}
+	if (!strcmp(flag, "over-threshold")) { /* the range is checked with the job (over_threshold) */
+		char *end;
+		errno = 0;
+		double v = strtod(value, &end);
+		if (errno || end == value || *end) {
+			fprintf(stderr, "aalab %s: over_threshold: expected a number, got '%s'\n", cmd, value);
+			return -1;
+		}
+		json_object_set_new(job, "over_threshold", json_real(v));
+		return 0;
+	}
 	if (!strcmp(flag, "baseline")) {
 		json_object_set_new(job, "baseline", json_string(value));
 		return 0;

@@ -222,7 +222,7 @@ static uint64_t tree_bytes(const char *dir)
  * keeps its event log (it says why). */
 static void clear_results(const char *dir, bool keep_events)
 {
-	const char *const parts[] = {"frames", "diff", "flip", "linear", "cases", "results.json", "report.html",
+	const char *const parts[] = {"frames", "diff", "flip", "linear", "exr", "cases", "results.json", "report.html",
 				     "events.jsonl", "viewer", NULL}; /* cases/: a suite's case folders */
 	char path[1400];
 	for (int i = 0; parts[i]; i++) {

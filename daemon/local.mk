@@ -41,7 +41,8 @@ DAEMON_TESTS = tests/integration/daemon_protocol.py tests/integration/daemon_job
 	tests/integration/daemon_docs.py tests/integration/daemon_user_methods.py \
 	tests/integration/daemon_cli.sh \
 	tests/integration/daemon_systemd.py tests/integration/protocol_example.sh \
-	tests/integration/systemd_units.sh tests/integration/dashboard.sh tests/cli_outdir.sh
+	tests/integration/systemd_units.sh tests/integration/dashboard.sh tests/cli_outdir.sh \
+	tests/integration/exr_over_threshold.py
 TESTS += $(DAEMON_TESTS)
 EXTRA_DIST += $(DAEMON_TESTS) tests/integration/daemon_lib.py tests/integration/daemon_valgrind.sh \
 	tests/integration/valgrind.supp

@@ -64,18 +64,20 @@ int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *o
 			return -1;
 		inner = slash + 1;
 	}
-	/* images live in frames/, diff/ and flip/ as PNG, linear colour in linear/ as raw RGBA16F
-	 * (engine/results/results.h) */
+	/* images live in frames/, diff/ and flip/ as PNG, linear colour in linear/ as raw RGBA16F and in exr/
+	 * as float EXR (engine/results/results.h) */
 	bool ok = false;
 	for (int i = 0; top[i]; i++)
 		ok |= strcmp(inner, top[i]) == 0 && (!in_case || !strcmp(inner, "report.html"));
-	bool linear = !strncmp(inner, "linear/", 7);
-	if (!ok && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5) || linear)) {
+	bool linear = !strncmp(inner, "linear/", 7), exr = !strncmp(inner, "exr/", 4);
+	if (!ok && (!strncmp(inner, "frames/", 7) || !strncmp(inner, "diff/", 5) || !strncmp(inner, "flip/", 5) || linear ||
+		    exr)) {
 		const char *name = strchr(inner, '/') + 1, *slash = strchr(name, '/');
 		if (slash && name_ok(name, (size_t)(slash - name))) {
 			const char *file = slash + 1;
 			size_t digits = strspn(file, "0123456789");
-			ok = digits >= 4 && digits <= 9 && strcmp(file + digits, linear ? ".rgba16f" : ".png") == 0;
+			ok = digits >= 4 && digits <= 9 &&
+			     strcmp(file + digits, linear ? ".rgba16f" : exr ? ".exr" : ".png") == 0;
 		}
 	}
 	if (!ok && !strncmp(inner, "viewer/", 7)) { /* report.html's frame scripts (engine/results/report_viewer.c) */
@@ -98,6 +100,8 @@ const char *file_content_type(const char *rel)
 		return "text/html; charset=utf-8";
 	if (n > 4 && !strcmp(rel + n - 4, ".png"))
 		return "image/png";
+	if (n > 4 && !strcmp(rel + n - 4, ".exr"))
+		return "image/x-exr";
 	if (n > 3 && !strcmp(rel + n - 3, ".js"))
 		return "text/javascript; charset=utf-8";
 	if (n > 4 && !strcmp(rel + n - 4, ".css"))
@@ -291,7 +295,8 @@ static void list_files(const char *base, const char *rel, json_t *out, int depth
 		else if (depth == 0 && !strcmp(de->d_name, "viewer")) /* viewer/NNNN.js: files right below it */
 			list_files(base, sub, out, 2);
 		else if (depth < 2 && (depth > 0 || !strcmp(de->d_name, "frames") || !strcmp(de->d_name, "diff") ||
-				       !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear")))
+				       !strcmp(de->d_name, "flip") || !strcmp(de->d_name, "linear") ||
+				       !strcmp(de->d_name, "exr")))
 			list_files(base, sub, out, depth + 1);
 		else if (depth == 2 || strcmp(de->d_name, "job.json") != 0)
 			json_array_append_new(out, json_string(sub));
@@ -340,7 +345,8 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 	}
 	if (job_file_path(c->d->store->dir, id, file, path, sizeof path)) {
 		protocol_error(c, tag, "invalid", "file", "not a file of a job: results.json, report.html, events.jsonl, "
-			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png, linear/NAME/NNNN.rgba16f or viewer/NNNN.js");
+			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png, linear/NAME/NNNN.rgba16f, "
+			       "exr/NAME/NNNN.exr or viewer/NNNN.js");
 		return;
 	}
 	char *data;

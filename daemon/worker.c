@@ -122,12 +122,16 @@ static json_t *frame_event(struct render_ctx *ctx, const struct aa_event *ev)
 	add_case(ctx->spec, ev, o);
 	if (images)
 		json_object_set_new(o, "image", json_string(rel));
+	const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference" : ev->result->methods[ev->method_index].label;
 	if (images && ctx->spec->linear_frames) {
-		const char *label = ev->type == AA_EVENT_REFERENCE_FRAME ? "reference"
-									  : ev->result->methods[ev->method_index].label;
 		aa_results_linear_relpath(label, ev->frame_ordinal, rel, sizeof rel);
 		case_path(ctx->spec, ev, rel, sizeof rel);
 		json_object_set_new(o, "linear", json_string(rel));
+	}
+	if (images && ctx->spec->exr_frames) {
+		aa_results_exr_relpath(label, ev->frame_ordinal, rel, sizeof rel);
+		case_path(ctx->spec, ev, rel, sizeof rel);
+		json_object_set_new(o, "exr", json_string(rel));
 	}
 	json_object_set_new(o, "done", json_integer(++ctx->done));
 	json_object_set_new(o, "total", json_integer(ctx->total));

@@ -58,6 +58,9 @@ struct aa_job_spec {
 	struct aa_method_spec methods[AA_MAX_METHODS];
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
 	bool linear_frames;        /* also store each frame's linear colour as raw RGBA16F (streamable) */
+	bool exr_frames;           /* also write each frame's linear colour as float EXR (aalab run --exr) */
+	double over_threshold;     /* idiff-style count: a pixel is over when any of R,G,B differs from the
+				    * reference by more than this share of full scale (8-bit sRGB) */
 	int inject_nonfinite_frame; /* tests only, not in job JSON: this frame's shading emits NaN/Inf in a
 				     * sparse pixel pattern (-1: never) */
 	char name[128];            /* optional user label of the job */
@@ -116,6 +119,7 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size);
 #define AA_MAX_REFERENCE_SAMPLES 4096
 #define AA_MAX_REPEAT 100
 #define AA_MAX_SHARD_WARMUP 1000
+#define AA_OVER_THRESHOLD_DEFAULT 0.01 /* the report viewer's default: more than 2 of 255 levels */
 
 /* ---- results ---- */
 
@@ -137,6 +141,8 @@ struct aa_frame_result {
 	double cpu_ms;             /* wall time of record + submit + wait for this method's frame */
 	struct aa_metrics metrics; /* against this frame's reference */
 	long nonfinite;            /* NaN/Inf values found in the method's float output (must be 0) */
+	long over_threshold;       /* pixels where any of R,G,B differs from the reference by more than the
+				    * job's over_threshold (idiff's count; 8-bit sRGB) */
 	double flicker;            /* mean |(m[t] - m[t-1]) - (r[t] - r[t-1])| over pixels and R,G,B, 8-bit
 				    * units: change between frames the reference does not have; NAN at frame 0 */
 };
@@ -234,6 +240,7 @@ struct aa_method_summary {
 	bool psnr_identical;
 	double ssim_mean;
 	double flicker_mean;       /* over frames 1.., NAN for one frame */
+	double over_threshold_mean; /* pixels over the job's over_threshold, mean over frames */
 	int best_frame, worst_frame; /* by PSNR (identical counts as best) */
 	double best_psnr, worst_psnr;
 };

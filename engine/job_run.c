@@ -374,6 +374,7 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err) ||
 	    aa_metrics_perceptual(&js->ref8, &js->out8, &fr->metrics, &js->flip8, err))
 		return -1;
+	fr->over_threshold = aa_metrics_count_over(&js->ref8, &js->out8, js->result->spec.over_threshold);
 	diff_image(&js->ref8, &js->out8, &js->diff8);
 	fr->flicker = NAN;
 	if (js->prev_out8[i].pixels) {

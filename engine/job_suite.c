@@ -503,6 +503,8 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size)
 		json_array_append_new(methods, json_string(spec->methods[i].label));
 	json_t *what = json_pack("{s:o, s:{s:i}, s:o, s:{s:i}}", "cases", cases, "reference", "samples",
 				 spec->reference_samples, "methods", methods, "timing", "repeat", spec->timing_repeat);
+	if (what && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT) /* as given only: earlier hashes stay */
+		json_object_set_new(what, "over_threshold", json_real(spec->over_threshold));
 	char *text = what ? json_dumps(what, JSON_COMPACT | JSON_SORT_KEYS) : NULL;
 	json_decref(what);
 	char hex[65] = "";

@@ -101,6 +101,23 @@ int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_r
 	return 0;
 }
 
+long aa_metrics_count_over(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test, double threshold)
+{
+	if (ref->width != test->width || ref->height != test->height || !ref->pixels || !test->pixels)
+		return -1;
+	const double limit = threshold * 255.0;
+	const size_t n = (size_t)ref->width * ref->height;
+	long over = 0;
+	for (size_t p = 0; p < n; p++) {
+		const uint8_t *r = ref->pixels + 4 * p, *t = test->pixels + 4 * p;
+		bool any = false;
+		for (int c = 0; c < 3; c++)
+			any = any || abs((int)t[c] - (int)r[c]) > limit;
+		over += any;
+	}
+	return over;
+}
+
 int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 			  struct aa_metrics *out, struct aa_image_rgba8 *flip_image, struct aa_error *err)
 {

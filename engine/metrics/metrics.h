@@ -31,6 +31,10 @@ struct aa_metrics {
 int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		       struct aa_metrics *out, struct aa_error *err);
 
+/* idiff's count: pixels where any of R,G,B differs by more than threshold x 255 (threshold a share of
+ * full scale, 0..1). -1 on a size mismatch. */
+long aa_metrics_count_over(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test, double threshold);
+
 /* FLIP (mean over the map) and the Fourier bands of two 8-bit sRGB images, into out->flip_mean and
  * out->fourier. When flip_image is not NULL (allocated at the images' size) it receives the FLIP error
  * map in the magma colour map. Returns -1 with err on a size mismatch or when memory runs out. */

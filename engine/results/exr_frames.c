@@ -1,10 +1,7 @@
-/* exr/<method dir>/NNNN.exr: a frame's linear colour as float EXR (aalab run --exr), for oiiotool,
- * idiff and tev, which read linear floats and not the 8-bit sRGB PNGs. */
-#include <errno.h>
+/* exr/<method dir>/NNNN.exr: a frame's linear colour as float EXR (job field exr_frames, aalab run --exr),
+ * for oiiotool, idiff and tev, which read linear floats and not the 8-bit sRGB PNGs. */
 #include <stdbool.h>
 #include <stdio.h>
-#include <string.h>
-#include <sys/stat.h>
 
 #include "image/image.h"
 #include "results.h"
@@ -16,24 +13,6 @@ void aa_results_exr_relpath(const char *label, int ordinal, char *out, size_t si
 	snprintf(out, size, "exr/%s/%04d.exr", dirname, ordinal);
 }
 
-/* mkdir -p of every directory of path up to its last '/'. */
-static int make_parents(char *path, struct aa_error *err)
-{
-	for (char *p = path + 1; *p; p++) {
-		if (*p != '/')
-			continue;
-		*p = '\0';
-		const bool failed = mkdir(path, 0755) < 0 && errno != EEXIST;
-		const int saved = errno;
-		if (failed)
-			aa_error_set(err, AA_ERR_IO, "", "cannot create directory %s: %s", path, strerror(saved));
-		*p = '/';
-		if (failed)
-			return -1;
-	}
-	return 0;
-}
-
 int aa_results_write_event_exr(const char *dir, const struct aa_event *ev, struct aa_error *err)
 {
 	if (!ev->linear || !ev->result || (ev->type != AA_EVENT_REFERENCE_FRAME && ev->type != AA_EVENT_METHOD_FRAME))
@@ -43,7 +22,7 @@ int aa_results_write_event_exr(const char *dir, const struct aa_event *ev, struc
 	aa_results_exr_relpath(label, ev->frame_ordinal, rel, sizeof rel);
 	if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, rel) >= sizeof path)
 		return aa_error_set(err, AA_ERR_IO, "", "path %s/%s is too long", dir, rel);
-	if (make_parents(path, err))
+	if (aa_results_make_parents(path, err))
 		return -1;
 	return aa_image_write_rgbaf(path, ev->linear, err);
 }

@@ -46,7 +46,7 @@ void aa_results_linear_relpath(const char *label, int ordinal, char *out, size_t
 }
 
 /* mkdir -p: creates every missing directory of path up to its last '/'. */
-static int make_parents(char *path, struct aa_error *err)
+int aa_results_make_parents(char *path, struct aa_error *err)
 {
 	for (char *p = path + 1; *p; p++) {
 		if (*p != '/')
@@ -86,7 +86,7 @@ int aa_results_write_image(const char *dir, const char *relpath, const struct aa
 	char path[4096];
 	if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, relpath) >= sizeof path)
 		return aa_error_set(err, AA_ERR_IO, "", "image path %s/%s is too long", dir, relpath);
-	if (make_parents(path, err) < 0)
+	if (aa_results_make_parents(path, err) < 0)
 		return -1;
 	return aa_image_write_png(path, img, err);
 }
@@ -99,7 +99,7 @@ static int write_linear(const char *dir, const char *label, int ordinal, const s
 	aa_results_linear_relpath(label, ordinal, rel, sizeof rel);
 	if (snprintf(path, sizeof path, "%s/%s", dir, rel) >= (int)sizeof path)
 		return aa_error_set(err, AA_ERR_IO, "", "path %s/%s is too long", dir, rel);
-	if (make_parents(path, err) < 0)
+	if (aa_results_make_parents(path, err) < 0)
 		return -1;
 	size_t n = (size_t)img->width * img->height * 4;
 	uint16_t *half = malloc(n * sizeof *half);
@@ -119,6 +119,8 @@ int aa_results_write_event_images(const char *dir, const struct aa_event *ev, st
 {
 	char rel[AA_LABEL_MAX * 2 + 32];
 	bool linear = ev->result && ev->result->spec.linear_frames && ev->linear;
+	if (ev->result && ev->result->spec.exr_frames && aa_results_write_event_exr(dir, ev, err))
+		return -1;
 	if (ev->type == AA_EVENT_REFERENCE_FRAME) {
 		aa_results_frame_relpath("frames", "reference", ev->frame_ordinal, rel, sizeof rel);
 		if (linear && write_linear(dir, "reference", ev->frame_ordinal, ev->linear, err))

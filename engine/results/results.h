@@ -44,6 +44,8 @@ void aa_report_esc(FILE *o, const char *s);
 
 /* exr/<dirname>/<NNNN>.exr: the frame's linear colour as float EXR (aalab run --exr; exr_frames.c). */
 void aa_results_exr_relpath(const char *label, int ordinal, char *out, size_t size);
+/* mkdir -p of every directory of path up to its last '/' (path is restored); -1 with err naming it. */
+int aa_results_make_parents(char *path, struct aa_error *err);
 /* Writes the EXR of a reference or method frame event (its linear image); other events write nothing. */
 int aa_results_write_event_exr(const char *dir, const struct aa_event *ev, struct aa_error *err);
 

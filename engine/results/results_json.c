@@ -214,6 +214,7 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "flip", num(f->metrics.flip_mean));
 	put(b, obj, "fourier", fourier_json(b, f->metrics.fourier));
 	put(b, obj, "nonfinite", json_integer(f->nonfinite));
+	put(b, obj, "over_threshold", json_integer(f->over_threshold));
 	put(b, obj, "image", image_path(r, "frames", m->label, ordinal));
 	put(b, obj, "diff", image_path(r, "diff", m->label, ordinal));
 	put(b, obj, "flip_map", image_path(r, "flip", m->label, ordinal));
@@ -233,7 +234,8 @@ static json_t *extreme_json(struct builder *b, const struct aa_method_result *m,
 	return obj;
 }
 
-static json_t *metrics_json(struct builder *b, const struct aa_method_result *m, const struct aa_method_summary *s)
+static json_t *metrics_json(struct builder *b, const struct aa_job_result *r, const struct aa_method_result *m,
+			    const struct aa_method_summary *s)
 {
 	json_t *metrics = json_object(), *psnr = json_object(), *ssim = json_object();
 	json_t *psnr_frames = json_array(), *ssim_frames = json_array();
@@ -292,6 +294,14 @@ static json_t *metrics_json(struct builder *b, const struct aa_method_result *m,
 	put(b, flicker, "mean", num(s->flicker_mean));
 	put(b, flicker, "per_frame", flicker_frames);
 	put(b, metrics, "flicker", flicker);
+	/* idiff's count of pixels over a threshold (any of R,G,B), per frame and as a mean share */
+	json_t *over = json_object(), *over_frames = json_array();
+	for (int i = 0; i < m->frame_count; i++)
+		push(b, over_frames, json_integer(m->frames[i].over_threshold));
+	put(b, over, "threshold", num(r->spec.over_threshold));
+	put(b, over, "mean_share", num(s->over_threshold_mean / ((double)r->spec.width * r->spec.height)));
+	put(b, over, "per_frame", over_frames);
+	put(b, metrics, "over_threshold", over);
 	for (int k = 0; k < AA_FOURIER_BANDS; k++)
 		band_mean[k] = band_n ? band_sum[k] / band_n : NAN;
 	json_t *fourier = fourier_json(b, band_mean);
@@ -345,7 +355,7 @@ static json_t *method_json(struct builder *b, const struct aa_job_result *r, con
 	put(b, obj, "memory", memory);
 	put(b, obj, "passes", pass_stats(b, m));
 	put(b, obj, "timed_renders", timed_renders_json(b, m));
-	put(b, obj, "metrics", metrics_json(b, m, &s));
+	put(b, obj, "metrics", metrics_json(b, r, m, &s));
 	for (int i = 0; i < m->frame_count; i++)
 		push(b, frames, frame_json(b, r, m, i));
 	put(b, obj, "frames", frames);

@@ -164,6 +164,7 @@ static int read_frames(const json_t *jm, const char *path, int first_frame, int 
 		}
 		read_metrics(item, curve, &f->metrics);
 		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
+		f->over_threshold = (long)json_integer_value(json_object_get(item, "over_threshold"));
 		f->flicker = jnum(item, "flicker");
 	}
 	m->frame_count = frames;

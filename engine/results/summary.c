@@ -123,7 +123,7 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 {
 	*out = (struct aa_method_summary){
 		.gpu_ms_median = NAN, .gpu_ms_p90 = NAN, .gpu_ms_mean = NAN, .cpu_ms_median = NAN,
-		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flicker_mean = NAN,
+		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flicker_mean = NAN, .over_threshold_mean = NAN,
 		.best_frame = -1, .worst_frame = -1, .best_psnr = NAN, .worst_psnr = NAN,
 	};
 	aa_timing_stats_of(NULL, 0, &out->gpu_ms);
@@ -132,14 +132,15 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	if (n <= 0)
 		return;
 	const int timed = m->timed && m->timed_count > n ? m->timed_count : n;
-	double *v = malloc((size_t)(3 * n + 2 * timed) * sizeof *v);
+	double *v = malloc((size_t)(4 * n + 2 * timed) * sizeof *v);
 	if (!v)
 		return;
-	double *mse = v, *ssim = v + n, *flicker = v + 2 * n, *gpu = v + 3 * n, *cpu = gpu + timed;
+	double *mse = v, *ssim = v + n, *flicker = v + 2 * n, *over = v + 3 * n, *gpu = v + 4 * n, *cpu = gpu + timed;
 	for (int i = 0; i < n; i++) {
 		mse[i] = m->frames[i].metrics.identical ? 0.0 : m->frames[i].metrics.mse;
 		ssim[i] = m->frames[i].metrics.ssim;
 		flicker[i] = m->frames[i].flicker;
+		over[i] = m->frames[i].over_threshold >= 0 ? (double)m->frames[i].over_threshold : NAN;
 	}
 	aa_timing_stats_of(gpu, collect_times(m, true, gpu), &out->gpu_ms);
 	aa_timing_stats_of(cpu, collect_times(m, false, cpu), &out->cpu_ms);
@@ -150,6 +151,7 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	out->mse_mean = finite_mean(mse, n);
 	out->ssim_mean = finite_mean(ssim, n);
 	out->flicker_mean = finite_mean(flicker, n); /* frame 0 has none (NAN) */
+	out->over_threshold_mean = finite_mean(over, n);
 	/* PSNR of the mean MSE, not the mean of PSNRs: one identical frame would make the latter infinite,
 	 * and dB do not average meaningfully. */
 	out->psnr_identical = out->mse_mean == 0;
