@@ -49,3 +49,30 @@ bool history_position(vec2 pixel_centre, vec2 velocity, vec2 size, out vec2 uv)
 	return all(lessThan(abs(velocity), vec2(60000.0))) && all(greaterThanEqual(prev, vec2(0.0))) &&
 	       all(lessThan(prev, size));
 }
+
+#if MASTER_TAA
+// seed 001's aliasedValue: model IDs, depth pseudo-variances of the current and the reprojected depth,
+// and the stabilised Sobel image blended between its cross and 3x3 averages (one place for both resolves)
+float master_aliased_value(sampler2D sobel, ivec2 p, ivec2 last, float model_average, float depth, float past_depth,
+			   bool valid, float dmin, float dmax, float davg)
+{
+	float max_depth_distance = min(abs(dmin - davg), abs(dmax - davg));
+	float dpv = 0.0, dtpv = 0.0;
+	if (max_depth_distance >= 0.002) {
+		dpv = pow(abs(depth - davg) / max_depth_distance, 2.0);
+		if (valid)
+			dtpv = pow(abs(past_depth - davg) / max_depth_distance, 4.0);
+	}
+	float s = texelFetch(sobel, p, 0).r, s3 = 0.0, sx = 0.0;
+	for (int y = -1; y <= 1; y++)
+		for (int x = -1; x <= 1; x++) {
+			float e = texelFetch(sobel, clamp(p + ivec2(x, y), ivec2(0), last), 0).r;
+			s3 += e;
+			if (x == 0 || y == 0)
+				sx += e;
+		}
+	float mix_value = clamp(model_average + s, 0.0, 1.0);
+	float sobel_avg = mix(sx / 5.0, s3 / 9.0, mix_value);
+	return clamp(sobel_avg + dpv + dtpv + model_average, 0.0, 1.0);
+}
+#endif

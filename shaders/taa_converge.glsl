@@ -237,24 +237,8 @@ void master_box(inout Neighbourhood nb, ivec2 p, float depth, float past_depth, 
 	ivec2 last = pc.size - 1;
 	float model_average = nb.model_diff / 9.0;
 	float davg = nb.dsum / 9.0;
-	float max_depth_distance = min(abs(nb.dmin - davg), abs(nb.dmax - davg));
-	float dpv = 0.0, dtpv = 0.0;
-	if (max_depth_distance >= 0.002) {
-		dpv = pow(abs(depth - davg) / max_depth_distance, 2.0);
-		if (valid)
-			dtpv = pow(abs(past_depth - davg) / max_depth_distance, 4.0);
-	}
-	float s = texelFetch(sobel, p, 0).r, s3 = 0.0, sx = 0.0;
-	for (int y = -1; y <= 1; y++)
-		for (int x = -1; x <= 1; x++) {
-			float e = texelFetch(sobel, clamp(p + ivec2(x, y), ivec2(0), last), 0).r;
-			s3 += e;
-			if (x == 0 || y == 0)
-				sx += e;
-		}
-	float mix_value = clamp(model_average + s, 0.0, 1.0);
-	float sobel_avg = mix(sx / 5.0, s3 / 9.0, mix_value);
-	float aliased = clamp(sobel_avg + dpv + dtpv + model_average, 0.0, 1.0);
+	float aliased = master_aliased_value(sobel, p, last, model_average, depth, past_depth, valid, nb.dmin, nb.dmax,
+					      davg);
 	nb.box_min = mix(nb.filtered_working, mix(nb.minx, nb.min3, aliased), aliased);
 	nb.box_max = mix(nb.filtered_working, mix(nb.maxx, nb.max3, aliased), aliased);
 }

@@ -95,24 +95,7 @@ void main()
 	{
 		float model_average = model_diff / 9.0;
 		float davg = dsum / 9.0, depth = texelFetch(surface, p, 0).y;
-		float max_depth_distance = min(abs(dmin - davg), abs(dmax - davg));
-		float dpv = 0.0, dtpv = 0.0;
-		if (max_depth_distance >= 0.002) {
-			dpv = pow(abs(depth - davg) / max_depth_distance, 2.0);
-			if (valid)
-				dtpv = pow(abs(hist.a - davg) / max_depth_distance, 4.0);
-		}
-		float s = texelFetch(sobel, p, 0).r, s3 = 0.0, sx = 0.0;
-		for (int y = -1; y <= 1; y++)
-			for (int x = -1; x <= 1; x++) {
-				float v1 = texelFetch(sobel, clamp(p + ivec2(x, y), ivec2(0), last), 0).r;
-				s3 += v1;
-				if (x == 0 || y == 0)
-					sx += v1;
-			}
-		float mix_value = clamp(model_average + s, 0.0, 1.0);
-		float sobel_avg = mix(sx / 5.0, s3 / 9.0, mix_value);
-		float aliased = clamp(sobel_avg + dpv + dtpv + model_average, 0.0, 1.0);
+		float aliased = master_aliased_value(sobel, p, last, model_average, depth, hist.a, valid, dmin, dmax, davg);
 		vec3 color_min = mix(mnx, mn3, aliased), color_max = mix(mxx, mx3, aliased);
 		box_min = mix(cur, color_min, aliased);
 		box_max = mix(cur, color_max, aliased);
