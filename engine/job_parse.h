@@ -12,6 +12,8 @@ int aa_job_parse_string(const json_t *v, const char *path, bool allow_empty, cha
 int aa_job_parse_keys(const json_t *obj, const char *path, const char *const *valid, struct aa_error *err);
 int aa_job_parse_scene(const char *scene, const char *path, struct aa_error *err);
 const char *aa_job_json_type(const json_t *v);
+/* User text for a message: at most 48 bytes, control characters as '?' (job and method files alike). */
+const char *aa_job_shown_text(const char *text, char *buf, size_t size);
 
 /* engine/job_suite.c: after the single-case keys are parsed into s (they are the defaults of every
  * case), reads suite, scenes, paths, sizes, cases, labels and baseline. */

@@ -597,3 +597,8 @@ const char *aa_job_json_type(const json_t *v)
 {
 	return type_name(v);
 }
+
+const char *aa_job_shown_text(const char *text, char *buf, size_t size)
+{
+	return shown(text, buf, size);
+}

@@ -14,6 +14,7 @@
 
 #include "../gpu/gpu.h"
 #include "../sha256.h"
+#include "../job_parse.h"
 #include "glsl_compile.h"
 #include "user_method.h"
 
@@ -144,31 +145,6 @@ bad(struct aa_error *err, const char *path, const char *file, const char *field,
 	return aa_error_set(err, AA_ERR_INVALID, path, "%s: %s%s%s", file, field, *field ? ": " : "", msg);
 }
 
-/* User text in a message: bounded, control characters as '?'. */
-static const char *shown(const char *text, char *buf, size_t size)
-{
-	size_t n = 0;
-	for (; text[n] && n + 1 < size && n < 40; n++)
-		buf[n] = iscntrl((unsigned char)text[n]) ? '?' : text[n];
-	buf[n] = '\0';
-	return buf;
-}
-
-static const char *value_type(const json_t *v)
-{
-	switch (json_typeof(v)) {
-	case JSON_OBJECT: return "an object";
-	case JSON_ARRAY: return "an array";
-	case JSON_STRING: return "a string";
-	case JSON_INTEGER: return "an integer";
-	case JSON_REAL: return "a number";
-	case JSON_TRUE:
-	case JSON_FALSE: return "a boolean";
-	case JSON_NULL: return "null";
-	}
-	return "a value";
-}
-
 struct ctx {
 	const char *path;   /* the job field */
 	const char *file;   /* the method file */
@@ -188,7 +164,7 @@ static int check_keys(struct ctx *c, const json_t *obj, const char *field, const
 		char list[256] = "", k[48];
 		for (i = 0; valid[i]; i++)
 			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", valid[i]);
-		return bad(c->err, c->path, c->file, field, "unknown key \"%s\"; valid keys: %s", shown(key, k, sizeof k),
+		return bad(c->err, c->path, c->file, field, "unknown key \"%s\"; valid keys: %s", aa_job_shown_text(key, k, sizeof k),
 			   list);
 	}
 	return 0;
@@ -198,7 +174,7 @@ static int check_keys(struct ctx *c, const json_t *obj, const char *field, const
 static int get_string(struct ctx *c, const json_t *v, const char *field, char *out, size_t size)
 {
 	if (!json_is_string(v))
-		return bad(c->err, c->path, c->file, field, "expected a string, got %s", value_type(v));
+		return bad(c->err, c->path, c->file, field, "expected a string, got %s", aa_job_json_type(v));
 	const char *s = json_string_value(v);
 	size_t n = json_string_length(v);
 	if (n == 0 || n >= size)
@@ -236,7 +212,7 @@ static int get_number(struct ctx *c, const json_t *v, const char *field, bool in
 {
 	if (integer ? !json_is_integer(v) : !json_is_number(v))
 		return bad(c->err, c->path, c->file, field, "expected %s, got %s", integer ? "an integer" : "a number",
-			   value_type(v));
+			   aa_job_json_type(v));
 	*out = json_number_value(v);
 	/* push constants carry 32-bit values */
 	if (integer && (*out < -2147483648.0 || *out > 2147483647.0))
@@ -254,7 +230,7 @@ static int parse_param(struct ctx *c, struct aa_user_method *um, int i, const js
 	snprintf(field, sizeof field, "params[%d]", i);
 	if (!json_is_object(p))
 		return bad(c->err, c->path, c->file, field, "expected an object {\"name\", \"type\", \"default\", ...}, "
-			   "got %s", value_type(p));
+			   "got %s", aa_job_json_type(p));
 	if (check_keys(c, p, field, keys))
 		return -1;
 	struct aa_param_def *d = &um->params[i];
@@ -308,7 +284,7 @@ static int parse_param(struct ctx *c, struct aa_user_method *um, int i, const js
 	}
 	if (d->type == AA_PARAM_BOOL) {
 		if (!json_is_boolean(def))
-			return bad(c->err, c->path, c->file, f, "expected true or false, got %s", value_type(def));
+			return bad(c->err, c->path, c->file, f, "expected true or false, got %s", aa_job_json_type(def));
 		d->def = json_is_true(def);
 	}
 	if (d->type == AA_PARAM_ENUM) {
@@ -421,7 +397,7 @@ static int parse_read(struct ctx *c, struct aa_user_method *um, int pi, int ri, 
 			return -1;
 	} else {
 		return bad(c->err, c->path, c->file, field, "expected an input name or {\"input\": ..., \"filter\": ...}, "
-			   "got %s", value_type(v));
+			   "got %s", aa_job_json_type(v));
 	}
 	r->linear = !strcmp(filter, "linear");
 	pending[ri][0] = '\0';
@@ -475,7 +451,7 @@ static int parse_pass(struct ctx *c, struct aa_user_method *um, const struct aa_
 	snprintf(field, sizeof field, "passes[%d]", i);
 	if (!json_is_object(p))
 		return bad(c->err, c->path, c->file, field, "expected an object {\"name\", \"shader\", \"reads\", "
-			   "\"format\"}, got %s", value_type(p));
+			   "\"format\"}, got %s", aa_job_json_type(p));
 	if (check_keys(c, p, field, keys))
 		return -1;
 	const json_t *v;
@@ -531,7 +507,7 @@ static int parse_pass(struct ctx *c, struct aa_user_method *um, const struct aa_
 	snprintf(f, sizeof f, "%s.reads", field);
 	const json_t *reads = json_object_get(p, "reads");
 	if (reads && !json_is_array(reads))
-		return bad(c->err, c->path, c->file, f, "expected an array of inputs, got %s", value_type(reads));
+		return bad(c->err, c->path, c->file, f, "expected an array of inputs, got %s", aa_job_json_type(reads));
 	if (json_array_size(reads) > AA_USER_MAX_READS)
 		return bad(c->err, c->path, c->file, f, "%zu inputs; a pass reads at most %d", json_array_size(reads),
 			   AA_USER_MAX_READS);
@@ -627,7 +603,7 @@ static int parse_method(struct ctx *c, struct aa_user_method *um, const struct a
 				    jerr.text);
 	int rc = -1;
 	if (!json_is_object(root)) {
-		bad(c->err, c->path, c->file, "", "a method file holds a JSON object, not %s", value_type(root));
+		bad(c->err, c->path, c->file, "", "a method file holds a JSON object, not %s", aa_job_json_type(root));
 		goto out;
 	}
 	if (check_keys(c, root, "", keys))
