@@ -4,7 +4,8 @@ libaaengine_a_SOURCES += \
 	engine/farm.h engine/job_parse.h engine/job_suite.c engine/suite_run.c \
 	engine/sha256.h engine/sha256.c engine/results/suite_results.c
 libaaengine_a_SOURCES += \
-	engine/results/compare.h engine/results/gate.c engine/results/compare.c engine/results/compare_output.c
+	engine/results/compare.h engine/results/gate.c engine/results/compare.c engine/results/compare_cost.h \
+	engine/results/compare_cost.c engine/results/compare_output.c
 libaaengine_a_SOURCES += engine/suite_files.c
 AM_CPPFLAGS += -DAA_SOURCE_SUITE_DIR='"$(abs_top_srcdir)/suites"' -DAA_INSTALLED_SUITE_DIR='"$(pkgdatadir)/suites"'
 aalab_SOURCES += client/suite_table.c client/cmd_compare.c client/cmd_suites.c
