@@ -264,7 +264,7 @@ void worker_render(struct aa_engine *engine, struct scene_cache *scenes, const s
 
 /* Gives the event its sequence number, logs it and wakes the event loop. Returns non-zero when the job
  * must stop. */
-int worker_publish(struct worker_run *run, json_t *ev, bool final)
+int worker_publish(struct worker_run *run, json_t *ev)
 {
 	struct store *s = run->s;
 	json_object_set_new(ev, "job", json_string(run->job->id));
@@ -283,8 +283,6 @@ int worker_publish(struct worker_run *run, json_t *ev, bool final)
 		fprintf(run->log, "%s\n", line);
 	if (line)
 		store_append_event(s, run->job, line);
-	if (final)
-		run->job->log_complete = true;
 	int stop = run->job->cancel;
 	pthread_mutex_unlock(&s->lock);
 	json_decref(ev);
@@ -316,7 +314,9 @@ void worker_run_begin(struct store *s, struct job *job, struct worker_run *run)
 	run->log = fopen(path, "w");
 }
 
-/* The job's end, however it ran: its state, the final event, its size, job.json and retention. */
+/* The job's end, however it ran: its state, the final event, its size, job.json and retention. The
+ * state changes last, with job.json saved and retention applied in the same locked step: a client that
+ * sees the job finished (status, list, watch_end) finds its job.json, log and the store as they stay. */
 void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 {
 	struct store *s = run->s;
@@ -340,8 +340,9 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	job->bytes = bytes_so_far;
 	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
 	json_t *ev;
+	enum job_state final_state;
 	if (rc == 0) {
-		job->state = JOB_DONE;
+		final_state = JOB_DONE;
 		job->summary = json_incref(summary);
 		ev = json_pack("{ss so ss}", "event", "job_finished", "summary", summary, "results", "results.json");
 		if (verdict) {
@@ -351,11 +352,11 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	} else if (err.code == AA_ERR_CANCELLED && !out->failed_writes) {
 		json_decref(summary);
 		json_decref(verdict);
-		job->state = requeue ? JOB_QUEUED : JOB_CANCELLED;
+		final_state = requeue ? JOB_QUEUED : JOB_CANCELLED;
 		ev = json_pack("{ss ss}", "event", "job_cancelled", "state", requeue ? "queued" : "cancelled");
 	} else {
 		json_decref(summary);
-		job->state = JOB_FAILED;
+		final_state = JOB_FAILED;
 		job->error = err;
 		ev = json_pack("{ss s{ss ss ss}}", "event", "job_failed", "error", "code", aa_error_code_name(err.code),
 			       "message", err.message, "path", err.path);
@@ -369,7 +370,7 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	s->gpu_busy_seconds += out->busy;
 	s->jobs_finished += !requeue;
 	pthread_mutex_unlock(&s->lock);
-	worker_publish(run, ev, true);
+	worker_publish(run, ev);
 	bool log_ok = run->log != NULL;
 	if (run->log) {
 		log_ok = !ferror(run->log) && fflush(run->log) == 0 && fsync(fileno(run->log)) == 0;
@@ -385,6 +386,8 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	job->bytes = bytes;
 	if (!requeue)
 		job->interruptions = 0;
+	job->state = final_state;
+	job->log_complete = true;
 	store_save(s, job);
 	store_apply_retention(s);
 	pthread_mutex_unlock(&s->lock);
@@ -395,7 +398,7 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 
 static int thread_event(void *ctx, json_t *ev)
 {
-	return worker_publish(ctx, ev, false);
+	return worker_publish(ctx, ev);
 }
 
 static int thread_progress(void *ctx, int done, int total)

@@ -38,7 +38,7 @@ struct worker_run {
 };
 void worker_run_begin(struct store *s, struct job *job, struct worker_run *run);
 /* Gives ev the job's id and next sequence number, logs it and wakes the event loop (steals ev). */
-int worker_publish(struct worker_run *run, json_t *ev, bool final);
+int worker_publish(struct worker_run *run, json_t *ev);
 int worker_progress(struct worker_run *run, int done, int total);
 /* Takes out->summary. */
 void worker_run_end(struct worker_run *run, struct worker_outcome *out);

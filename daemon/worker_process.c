@@ -465,7 +465,7 @@ static int relay(struct store *s, struct worker_run *run, struct worker_outcome 
 			int stop = 0;
 			r = -1; /* anything but these is not this protocol: the process is not to be trusted any more */
 			if (type && !strcmp(type, "event") && json_is_object(json_object_get(m, "event"))) {
-				stop = worker_publish(run, json_incref(json_object_get(m, "event")), false);
+				stop = worker_publish(run, json_incref(json_object_get(m, "event")));
 				r = 1;
 			} else if (type && !strcmp(type, "progress")) {
 				stop = worker_progress(run, (int)json_integer_value(json_object_get(m, "done")),

@@ -8,12 +8,14 @@ tests/durability/fault_shim.so, which records its calls and fails one on demand.
     job directory and no temporary file, and the daemon goes on serving.
   - A failed write of results.json or report.html fails the job, naming the file, with no temporary left.
   - A crash between writing job.json's temporary and renaming it leaves the old job.json whole: the daemon
-    starts again and runs the job."""
+    starts again and runs the job.
+  - A finished job's state, job.json, event log and the retention it triggers are seen together."""
 import json
 import os
 import shutil
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -144,6 +146,38 @@ try:
     if stale:
         # the store does not yet remove temporaries of writes a crash interrupted (reported in issue 20)
         print("note: temporary files of the interrupted write remain after the restart: %s" % stale)
+    check(d.stop() == 0, "aalabd exits 0")
+
+    # 5. A finished job looks finished all at once: with every fsync of the event log 300 ms slow, the
+    #    first status that says done finds job.json saying done, the log ending in job_finished, and
+    #    retention (--retention-jobs 1) already applied to the job before it.
+    tmp = tempfile.mkdtemp(prefix="aalabd-durability.")
+    runs.append(tmp)
+    state = os.path.join(tmp, "state")
+    os.makedirs(state, exist_ok=True)
+    d = Daemon("--retention-jobs", "1", tmp=tmp, env=preload_env(AALABD, state, None, "fsync:events.jsonl:0:delay"))
+    c = d.connect()
+    first = c.request({"op": "submit", "job": JOB})["job"]
+    wait_state(c, first, ["done"])
+    second = c.request({"op": "submit", "job": JOB})["job"]
+    seen = None
+    for _ in range(6000):  # polled every 10 ms: the 300 ms window of the old order could not hide
+        r = c.request({"op": "status", "job": second})
+        if r.get("ok") and r["job"]["state"] != "running" and r["job"]["state"] != "queued":
+            seen = r["job"]["state"]
+            with open(os.path.join(d.state, "jobs", second, "job.json")) as f:
+                saved = json.load(f)["state"]
+            with open(os.path.join(d.state, "jobs", second, "events.jsonl")) as f:
+                last = [json.loads(l) for l in f][-1]["event"]
+            gone = not os.path.exists(os.path.join(d.state, "jobs", first))
+            break
+        time.sleep(0.01)
+    check(seen == "done", "the second job finishes (%s)" % seen)
+    if seen:
+        check(saved == "done", "at the first status that says done, job.json says so too (%s)" % saved)
+        check(last == "job_finished", "and the event log ends in job_finished (%s)" % last)
+        check(gone, "and retention has removed the job before it")
+    c.close()
     check(d.stop() == 0, "aalabd exits 0")
 except Exception as e:
     crashed(d, e)

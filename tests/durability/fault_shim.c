@@ -6,11 +6,13 @@
  *   AALAB_FAULT_LOG=FILE   appends one line per call: "OP PATH [PATH2]" (OP: mkstemp, open-write, write,
  *                          fsync, fsync-dir, close, rename, unlink); paths are resolved through
  *                          /proc/self/fd, so files opened by fopen count too
- *   AALAB_FAULT=OP:GLOB[:N][:crash]
+ *   AALAB_FAULT=OP:GLOB[:N][:crash|:delay]
  *                          the Nth call (1-based; 0 or none: every call) of OP (write, fsync, rename)
  *                          whose path's base name matches GLOB (fnmatch; for rename, the old or the new
  *                          name) fails: write with ENOSPC, fsync and rename with EIO; with ":crash" the
- *                          process is killed (SIGKILL) instead, before the call happens
+ *                          process is killed (SIGKILL) instead, before the call happens; with ":delay"
+ *                          the call succeeds after 300 ms (a slow disk, to widen a window between two
+ *                          steps that must look like one from outside)
  *
  * Built without sanitizers; in sanitizer builds the tests preload the sanitizer runtime first. */
 #define _GNU_SOURCE
@@ -27,6 +29,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <time.h>
 #include <unistd.h>
 
 /* Set up once, when the shim is loaded; no locks afterwards: a record is one O_APPEND write (atomic for a
@@ -37,7 +40,7 @@ static char root[PATH_MAX];
 static struct {
 	char op[16], glob[256];
 	long nth, seen;
-	bool crash, active;
+	bool crash, delay, active;
 } fault;
 
 __attribute__((constructor)) static void init(void)
@@ -59,6 +62,8 @@ __attribute__((constructor)) static void init(void)
 			for (char *t; (t = strtok_r(NULL, ":", &save));) {
 				if (strcmp(t, "crash") == 0)
 					fault.crash = true;
+				else if (strcmp(t, "delay") == 0)
+					fault.delay = true;
 				else
 					fault.nth = strtol(t, NULL, 10);
 			}
@@ -133,6 +138,13 @@ static bool faulted(const char *op, const char *a, const char *b)
 	if (fault.crash) {
 		record("crash", a, b);
 		kill(getpid(), SIGKILL);
+	}
+	if (fault.delay) {
+		record("delay", a, b);
+		struct timespec pause = {0, 300 * 1000 * 1000};
+		while (nanosleep(&pause, &pause) < 0 && errno == EINTR)
+			;
+		return false;
 	}
 	record("fault", a, b);
 	return true;
