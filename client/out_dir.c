@@ -124,6 +124,16 @@ int aa_out_dir_commit(struct aa_out_dir *o, char *err, size_t err_size)
 {
 	char old[1200] = "";
 	struct stat st;
+	/* every frame, image and file in the folder on disk before the rename publishes it: one syncfs of
+	 * the file system rather than an fsync per image (a long job writes thousands) */
+	int work_fd = open(o->work, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (work_fd < 0 || syncfs(work_fd) != 0) {
+		snprintf(err, err_size, "out: cannot sync the results in '%s' to disk: %s", o->work, strerror(errno));
+		if (work_fd >= 0)
+			close(work_fd);
+		return -1;
+	}
+	close(work_fd);
 	if (stat(o->final, &st) == 0) {
 		/* an empty folder, or an earlier result that --force replaces: moved aside, removed after */
 		snprintf(old, sizeof old, "%s.aalab-old.%ld", o->final, (long)getpid());

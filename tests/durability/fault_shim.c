@@ -4,12 +4,12 @@
  *
  *   AALAB_FAULT_ROOT=DIR   only paths under DIR are recorded or faulted (default: all)
  *   AALAB_FAULT_LOG=FILE   appends one line per call: "OP PATH [PATH2]" (OP: mkstemp, open-write, write,
- *                          fsync, fsync-dir, close, rename, unlink); paths are resolved through
+ *                          fsync, fsync-dir, syncfs, close, rename, unlink); paths are resolved through
  *                          /proc/self/fd, so files opened by fopen count too
  *   AALAB_FAULT=OP:GLOB[:N][:crash|:delay]
- *                          the Nth call (1-based; 0 or none: every call) of OP (write, fsync, rename)
+ *                          the Nth call (1-based; 0 or none: every call) of OP (write, fsync, syncfs, rename)
  *                          whose path's base name matches GLOB (fnmatch; for rename, the old or the new
- *                          name) fails: write with ENOSPC, fsync and rename with EIO; with ":crash" the
+ *                          name) fails: write with ENOSPC, the others with EIO; with ":crash" the
  *                          process is killed (SIGKILL) instead, before the call happens; with ":delay"
  *                          the call succeeds after 300 ms (a slow disk, to widen a window between two
  *                          steps that must look like one from outside)
@@ -257,6 +257,21 @@ static int tracked_sync(int fd, bool data_only)
 
 int fsync(int fd) { return tracked_sync(fd, false); }
 int fdatasync(int fd) { return tracked_sync(fd, true); }
+
+/* syncfs flushes a whole file system; its path is that of the descriptor it is given */
+int syncfs(int fd)
+{
+	REAL(syncfs, int, (int));
+	char path[PATH_MAX];
+	fd_path(fd, path, sizeof path);
+	bool fail = faulted("syncfs", path, NULL);
+	record(fail ? "syncfs-failed" : "syncfs", path, NULL);
+	if (fail) {
+		errno = EIO;
+		return -1;
+	}
+	return real_syncfs(fd);
+}
 
 int close(int fd)
 {

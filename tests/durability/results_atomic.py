@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """aalab run's results are durable (issue 20): results.json and report.html are written atomically (a
 temporary file, fsync, rename and a directory fsync each, in the recorded calls) into a temporary folder
-beside --out, which is renamed into place when complete and its parent directory synced after that rename.
+beside --out, which is synced as a whole (syncfs: the frames too) and renamed into place when complete, and
+its parent directory synced after that rename.
 When a write, an fsync or a rename fails (fault injection by tests/durability/fault_shim.so), aalab says
 so and exits non-zero, the previous results (replaced with --force) stay byte for byte, and no temporary
 file or folder is left."""
@@ -62,6 +63,8 @@ try:
         check(files and max(files) < i, "the folder is renamed after the files in it are complete")
         check(any(c[0] == "fsync-dir" and c[1] == tmp for c in calls[i + 1:]),
               "the folder holding --out is synced after the rename")
+        check(any(c[0] == "syncfs" and c[1] == folder_renames[0][1] for c in calls[:i]),
+              "the frames and every file in the folder are synced (syncfs) before it is renamed")
     with open(os.path.join(out, "results.json"), "rb") as f:
         before = {"results.json": f.read()}
     with open(os.path.join(out, "report.html"), "rb") as f:
@@ -75,6 +78,7 @@ try:
               ("fsync:.report.html.*", "report.html", "cannot sync"),
               ("rename:report.html", "report.html", "cannot rename"),
               ("fsync:.results-dir.aalab-partial.*", "results.json", "cannot sync directory"),
+              ("syncfs:.results-dir.aalab-partial.*", "results.json", "cannot sync the results"),
               ("rename:results-dir:1", "results.json", "cannot move"),  # the earlier result, moved aside
               ("rename:results-dir:2", "results.json", "cannot rename")]  # the new one, into place
     for fault, name, message in faults:
