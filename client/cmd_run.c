@@ -150,6 +150,8 @@ int cmd_run(int argc, char **argv)
 		default: fputs(aa_run_help, stderr); goto out;
 		}
 	}
+	if (!images) /* the job field, so that results.json and the report name no image either */
+		json_object_set_new(overrides, "keep_frames", json_false());
 	if (exr) /* the job field: aalabd writes them as this process would (exr/METHOD/NNNN.exr) */
 		json_object_set_new(overrides, "exr_frames", json_true());
 	if (exr && !images) {

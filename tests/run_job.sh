@@ -49,4 +49,11 @@ done
 expect_status 0 "--json prints results" -- "$AALAB" run $job --no-images --json --out "$TMP/c"
 /usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$TMP/out" && pass "--json output parses" || fail "--json output is not JSON"
 [ ! -d "$TMP/c/frames" ] && pass "--no-images writes no frames" || fail "--no-images wrote frames"
+/usr/bin/python3 - "$TMP/c/results.json" <<'PY' && pass "--no-images: results.json names no image" || fail "--no-images: results.json names images that were not written"
+import json, sys
+r = json.load(open(sys.argv[1]))
+paths = [f.get(k) for m in r["methods"] for f in m["frames"] for k in ("image", "diff", "flip_map")]
+paths += [f.get("image") for f in r["reference"].get("per_frame", [])]
+assert paths and all(p is None for p in paths), paths
+PY
 finish
