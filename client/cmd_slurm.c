@@ -218,6 +218,24 @@ int cmd_slurm(int argc, char **argv)
 			err.path[0] ? ": " : "", err.message);
 		goto done;
 	}
+	/* the tasks run job.json from the farm folder, on other nodes: scene files by absolute path */
+	for (int i = 0; i < (spec.is_suite ? spec.case_count : 1); i++) {
+		char *scene = spec.is_suite ? spec.cases[i].scene : spec.scene;
+		size_t size = spec.is_suite ? sizeof spec.cases[i].scene : sizeof spec.scene, len = strlen(scene);
+		char abs_path[PATH_MAX];
+		errno = 0;
+		if (scene[0] == '/' || (!strchr(scene, '/') && (len < 5 || strcmp(scene + len - 5, ".json") != 0)))
+			continue; /* absolute already, or a scene name */
+		if (!realpath(scene, abs_path) || strlen(abs_path) >= size) {
+			char field[48] = "scene";
+			if (spec.is_suite)
+				snprintf(field, sizeof field, "cases[%d].scene", i);
+			fprintf(stderr, "aalab slurm: %s: cannot use the scene file '%s': %s\n", field, scene,
+				errno ? strerror(errno) : "its absolute path is too long");
+			goto done;
+		}
+		snprintf(scene, size, "%s", abs_path);
+	}
 	if (spec.is_suite)
 		snprintf(so.what, sizeof so.what, "%d cases", spec.case_count);
 	else

@@ -143,6 +143,22 @@ done
 expect_status 0 "merge.sbatch" -- sh "$F/merge.sbatch"
 $PY "$CHECK" "$TMP/whole" "$F/merged" --exact none,fxaa >/dev/null && pass "the scripts' merge = the unsharded run" ||
 	fail "the scripts' merged results"
+# a job file named by a relative path, whose scene file is relative to it: the tasks run elsewhere, so
+# job.json names the scene file by its absolute path, and a task started from / finds it
+mkdir -p "$TMP/rel/jobs"
+cp "$top_srcdir/scenes/spinning-wheel.json" "$TMP/rel/my-scene.json" # (no asset files)
+echo '{"scene": "../my-scene.json", "frames": 2, "size": "32x18", "reference": {"samples": 4}, "methods": ["none"]}' \
+	>"$TMP/rel/jobs/rel.json"
+(cd "$TMP/rel" && "$AALAB" slurm jobs/rel.json --shards 1 --out farm >"$TMP/out" 2>&1) &&
+	$PY -c "import json,sys; s=json.load(open(sys.argv[1]))['scene']; assert s.startswith('/') and s.endswith('/my-scene.json'), s" \
+		"$TMP/rel/farm/job.json" && pass "aalab slurm: a relative scene file is written by its absolute path" ||
+	{ fail "relative scene path in job.json"; cat "$TMP/out" "$TMP/rel/farm/job.json"; }
+(cd / && SLURM_ARRAY_TASK_ID=0 sh "$TMP/rel/farm/shards.sbatch" >"$TMP/rel-task.log" 2>&1) &&
+	pass "and the task, started from /, renders it" || { fail "task of the relative-scene job"; tail -5 "$TMP/rel-task.log"; }
+echo '{"scene": "../missing.json", "frames": 2, "size": "32x18", "methods": ["none"]}' >"$TMP/rel/jobs/missing.json"
+(cd "$TMP/rel" && "$AALAB" slurm jobs/missing.json --shards 1 --out farm2 >"$TMP/out" 2>&1); rc=$?
+[ $rc -ne 0 ] && grep -q "^aalab slurm: scene: cannot use the scene file 'jobs/../missing.json'" "$TMP/out" &&
+	pass "a missing scene file is refused, naming the field and the file" || { fail "missing scene file (exit $rc)"; cat "$TMP/out"; }
 expect_status 2 "aalab slurm again into the same folder" -- "$AALAB" slurm "$TMP/job.json" --shards 3 --out "$F"
 expect_status 2 "--gres with a space" -- "$AALAB" slurm "$TMP/job.json" --shards 3 --out "$TMP/f2" --gres "gpu 1"
 expect_stderr "^aalab slurm: --gres: " "names the flag"
