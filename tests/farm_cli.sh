@@ -55,6 +55,16 @@ s = {x["name"]: x for x in json.load(open(sys.argv[1]))}
 assert all("error" not in x for x in s.values()), s
 assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 14) and s["full"]["cases"] == 16 and s["hard"]["cases"] == 7, s
 ' "$TMP/out" && pass "the shipped suites (smoke, full, hard) are valid jobs" || { fail "shipped suites"; cat "$TMP/out"; }
+# a suite of the user's with a user method is listed as valid (its method file read as aalab run reads it)
+mkdir -p "$TMP/user-suites"
+echo '{"suite": "withuser", "scenes": ["hard-edges"], "sizes": ["64x36"], "methods": ["none",
+ "user:file='"$top_srcdir"'/examples/methods/edge_blur.json"]}' >"$TMP/user-suites/withuser.json"
+AALAB_SUITE_DIR="$TMP/user-suites" expect_status 0 "aalab suites with a user method" -- "$AALAB" suites --json
+/usr/bin/python3 -c '
+import json, sys
+s = {x["name"]: x for x in json.load(open(sys.argv[1]))}
+assert "error" not in s["withuser"] and s["withuser"]["methods"] == 2, s["withuser"]
+' "$TMP/out" && pass "a suite with a user method is listed as valid" || { fail "suite with a user method"; cat "$TMP/out"; }
 expect_status 2 "an unknown suite name" -- "$AALAB" run no-such-suite --quiet --out "$TMP/x"
 expect_stderr "no suite of that name \(suites:.*smoke" "says which suites exist"
 expect_status 2 "scene and scenes together" -- "$AALAB" run "$TMP/suites/farmtest.json" --scene hard-edges --quiet \
