@@ -59,6 +59,8 @@ struct aa_job_spec {
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
 	bool linear_frames;        /* also store each frame's linear colour as raw RGBA16F (streamable) */
 	bool exr_frames;           /* also write each frame's linear colour as float EXR (aalab run --exr) */
+	bool viewer;               /* report.html's image viewer and its viewer/NNNN.js frame scripts (the
+				    * frames again as data: URLs, ~1.3x their disk); false: the PNGs only */
 	double over_threshold;     /* idiff-style count: a pixel is over when any of R,G,B differs from the
 				    * reference by more than this share of full scale (8-bit sRGB) */
 	int inject_nonfinite_frame; /* tests only, not in job JSON: this frame's shading emits NaN/Inf in a

@@ -14,7 +14,7 @@
 #define AA_MAX_FIRST_FRAME 10000000
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
-					"reference", "methods", "keep_frames", "linear_frames", "exr_frames", "over_threshold", "name", "timing",
+					"reference", "methods", "keep_frames", "linear_frames", "exr_frames", "viewer", "over_threshold", "name", "timing",
 					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const shard_keys[] = { "warmup", NULL };
@@ -405,6 +405,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->timing_repeat = 1;
 	spec->keep_frames = true;
 	spec->over_threshold = AA_OVER_THRESHOLD_DEFAULT;
+	spec->viewer = true;
 	spec->inject_nonfinite_frame = -1;
 	spec->shard_warmup = -1;
 	/* the default comparison: no AA against 16x supersampling */
@@ -518,6 +519,11 @@ static int parse_job(const json_t *job, const struct aa_file_source *files, stru
 		if (s.exr_frames && !s.keep_frames)
 			return bad(err, AA_ERR_INVALID, "exr_frames", "EXR frames are images: they need keep_frames true");
 	}
+	if ((v = json_object_get(job, "viewer"))) {
+		if (!json_is_boolean(v))
+			return bad(err, AA_ERR_INVALID, "viewer", "expected true or false, got %s", type_name(v));
+		s.viewer = json_is_true(v);
+	}
 	if ((v = json_object_get(job, "over_threshold"))) {
 		if (!json_is_number(v) || !(json_number_value(v) >= 0.0 && json_number_value(v) <= 1.0))
 			return bad(err, AA_ERR_INVALID, "over_threshold", "expected a number from 0 to 1 (a share of full "
@@ -566,6 +572,8 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 	/* likewise: only when not the default, so that earlier jobs keep their canonical form and hash */
 	if (job && spec->exr_frames)
 		json_object_set_new(job, "exr_frames", json_true());
+	if (job && !spec->viewer)
+		json_object_set_new(job, "viewer", json_false());
 	if (job && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT)
 		json_object_set_new(job, "over_threshold", json_real(spec->over_threshold));
 	return job;

@@ -56,4 +56,8 @@ paths = [f.get(k) for m in r["methods"] for f in m["frames"] for k in ("image", 
 paths += [f.get("image") for f in r["reference"].get("per_frame", [])]
 assert paths and all(p is None for p in paths), paths
 PY
+expect_status 0 "--no-viewer" -- "$AALAB" run $job --no-viewer --out "$TMP/d"
+[ -d "$TMP/d/frames/none" ] && [ ! -e "$TMP/d/viewer" ] && grep -q '"no_images":"No viewer: the job left it out' "$TMP/d/report.html" &&
+	pass "--no-viewer keeps the PNGs, writes no viewer/, and the report says why it has no viewer" ||
+	fail "--no-viewer: $(ls "$TMP/d")"
 finish

@@ -67,9 +67,13 @@ static json_t *viewer_data(const struct aa_job_result *r, const char *dir)
 	for (int f = 0; f < frame_count; f++)
 		json_array_append_new(frames, json_integer(r->method_count > 0 ? r->methods[0].frames[f].frame
 									       : r->reference.frames[f].frame));
-	return json_pack("{so si si sf sb si so so so}", "regions",
+	const char *why = !r->spec.keep_frames || frame_count == 0
+				  ? "No images: the job did not keep frames."
+				  : "No viewer: the job left it out (viewer: false); the frames are the PNGs in frames/, diff/ "
+				    "and flip/ beside this page.";
+	return json_pack("{so si si sf sb ss si so so so}", "regions",
 			 aa_report_worst_regions(r, dir, REGION_TILE, REGION_COUNT), "width", r->spec.width, "height", r->spec.height, "fps",
-			 r->fps > 0 ? r->fps : 30.0, "images", r->spec.keep_frames && frame_count > 0,
+			 r->fps > 0 ? r->fps : 30.0, "images", r->spec.keep_frames && r->spec.viewer && frame_count > 0, "no_images", why,
 			 "reference_samples", r->reference.samples, "frames", frames, "methods", methods,
 			 "magma", magma_hex());
 }
@@ -165,7 +169,7 @@ static void put_image(FILE *o, const char *dir, const char *rel)
 int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err)
 {
 	const int frame_count = r->method_count > 0 ? r->methods[0].frame_count : 0;
-	if (!r->spec.keep_frames || frame_count == 0)
+	if (!r->spec.keep_frames || !r->spec.viewer || frame_count == 0)
 		return 0;
 	char sub[4096];
 	if ((size_t)snprintf(sub, sizeof sub, "%s/viewer", dir) >= sizeof sub)

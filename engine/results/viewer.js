@@ -36,7 +36,7 @@ const label = id => id === REF ? "reference (" + D.reference_samples + " samples
 const sources = [[REF, "reference"]].concat(D.methods.map((m, i) => [i, m.label]));
 
 if (!D.images) {
-	root.append(el("p", { class: "note" }, "No images: the job did not keep frames."));
+	root.append(el("p", { class: "note" }, D.no_images));
 	api.ready = true;
 	return;
 }
