@@ -8,7 +8,7 @@ static const struct aa_cmd_entry commands[] = {
 	/* name, usage, summary, exec[, full help] */
 	{"run", "run [JOB.json|SUITE] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
 		"[--reference-samples N] [--repeat N] [--over-threshold X] [--label KEY=VALUE] [--out DIR] [--device SEL] "
-		"[--no-images] [--exr] [--json] [--quiet] [--shard I/N]",
+		"[--no-images] [--no-viewer] [--exr] [--json] [--quiet] [--shard I/N]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
 	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
 	{"suites", "suites [--json]", "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
