@@ -27,3 +27,20 @@ expect_stderr() {
 }
 
 finish() { [ "$failures" -eq 0 ] && exit 0 || exit 1; }
+
+# start_daemon [AALABD ARGS...]: aalabd on $TMP/aalabd.sock, its state in $TMP/state and its log in
+# $TMP/daemon.log, stopped by its PID on exit; returns once it is ready. Sets sock, daemon (the PID) and,
+# with --http 127.0.0.1:0, port.
+start_daemon() {
+	sock="$TMP/aalabd.sock"
+	"$top_builddir/aalabd" --socket "$sock" --state-dir "$TMP/state" "$@" >"$TMP/daemon.log" 2>&1 &
+	daemon=$!
+	trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
+	i=0
+	until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
+		i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
+		kill -0 $daemon 2>/dev/null || { cat "$TMP/daemon.log"; fail "aalabd exited"; finish; }
+		sleep 0.1
+	done
+	port=$(sed -n 's/^aalabd: listening (http) on 127.0.0.1:\([0-9]*\)$/\1/p' "$TMP/daemon.log")
+}

@@ -2,17 +2,7 @@
 # The client's service commands against a real aalabd: submit, watch, status, list, cancel, get, with
 # --connect and --json; `aalab run` uses the daemon when one answers and runs in-process with --local.
 . "$(dirname "$0")/../lib.sh"
-AALABD="$top_builddir/aalabd"
-sock="$TMP/aalabd.sock"
-"$AALABD" --socket "$sock" --state-dir "$TMP/state" >"$TMP/daemon.log" 2>&1 &
-daemon=$!
-trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
-i=0
-until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
-	i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
-	kill -0 $daemon 2>/dev/null || { cat "$TMP/daemon.log"; fail "aalabd exited"; finish; }
-	sleep 0.1
-done
+start_daemon
 C="--connect unix:$sock"
 job="--scene thin-wires --methods none,ssaa:4 --frames 2 --size 64x36 --reference-samples 4"
 

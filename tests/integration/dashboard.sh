@@ -3,16 +3,7 @@
 # job's cost-vs-accuracy chart (one point per method) from the polled /v1/jobs. Skipped without chromium.
 . "$(dirname "$0")/../lib.sh"
 command -v chromium >/dev/null 2>&1 || { echo "SKIP: chromium not installed (scripts/install-deps.sh)"; exit 77; }
-sock="$TMP/aalabd.sock"
-"$top_builddir/aalabd" --socket "$sock" --state-dir "$TMP/state" --http 127.0.0.1:0 >"$TMP/daemon.log" 2>&1 &
-daemon=$!
-trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
-i=0
-until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
-	i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
-	sleep 0.1
-done
-port=$(sed -n 's/^aalabd: listening (http) on 127.0.0.1:\([0-9]*\)$/\1/p' "$TMP/daemon.log")
+start_daemon --http 127.0.0.1:0
 expect_status 0 "a job runs" -- "$AALAB" submit --watch --quiet --connect "unix:$sock" --scene thin-wires \
 	--methods none,ssaa:4 --frames 2 --size 64x36 --reference-samples 4
 id=$(head -1 "$TMP/out")

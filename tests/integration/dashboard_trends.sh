@@ -4,16 +4,7 @@
 # order; the verdict against a baseline shows in the job list. Skipped without chromium.
 . "$(dirname "$0")/../lib.sh"
 command -v chromium >/dev/null 2>&1 || { echo "SKIP: chromium not installed (scripts/install-deps.sh)"; exit 77; }
-sock="$TMP/aalabd.sock"
-"$top_builddir/aalabd" --socket "$sock" --state-dir "$TMP/state" --http 127.0.0.1:0 >"$TMP/daemon.log" 2>&1 &
-daemon=$!
-trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
-i=0
-until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
-	i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
-	sleep 0.1
-done
-port=$(sed -n 's/^aalabd: listening (http) on 127.0.0.1:\([0-9]*\)$/\1/p' "$TMP/daemon.log")
+start_daemon --http 127.0.0.1:0
 cat >"$TMP/suite.json" <<'JSON'
 {"suite": "trend", "scenes": ["thin-wires", "hard-edges"], "size": "64x36", "frames": 2, "reference": {"samples": 4},
  "methods": ["none", "fxaa", "smaa"], "keep_frames": false}

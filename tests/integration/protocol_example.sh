@@ -2,15 +2,7 @@
 # docs/protocol.md is enough to write a client: its Python example, taken from the document as is, submits
 # a job to a real aalabd and reads its stream with frames.
 . "$(dirname "$0")/../lib.sh"
-sock="$TMP/aalabd.sock"
-"$top_builddir/aalabd" --socket "$sock" --state-dir "$TMP/state" >"$TMP/daemon.log" 2>&1 &
-daemon=$!
-trap 'kill $daemon 2>/dev/null; wait $daemon 2>/dev/null; rm -rf "$TMP"' EXIT
-i=0
-until grep -qs "aalabd: ready" "$TMP/daemon.log"; do
-	i=$((i + 1)); [ $i -gt 600 ] && { cat "$TMP/daemon.log"; fail "aalabd did not start"; finish; }
-	sleep 0.1
-done
+start_daemon
 # the first ```python block of the document
 sed -n '/^```python$/,/^```$/p' "$top_srcdir/docs/protocol.md" | sed '1d;$d' >"$TMP/example.py"
 [ -s "$TMP/example.py" ] && pass "docs/protocol.md has a Python example" || fail "no python block in docs/protocol.md"
