@@ -15,7 +15,6 @@ import os
 import shutil
 import sys
 import tempfile
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -30,17 +29,6 @@ def scene_payload():
     # a scene without asset files, so that it can be sent inline
     with open(os.path.join(os.environ["AALAB_SCENE_DIR"], "spinning-wheel.json"), "rb") as f:
         return f.read()
-
-
-def leftovers_after_save(root, timeout=10.0):
-    """Temporary files still there once the job's last job.json save is done: status says failed as soon as
-    the worker decides, and the worker saves job.json (temporary, fsync, rename) just after, below the
-    loop's priority (render-nice), so a look at once can catch that save's temporary file. One that stays
-    for 10 s is left behind."""
-    deadline = time.time() + timeout
-    while leftovers(root) and time.time() < deadline:
-        time.sleep(0.05)
-    return leftovers(root)
 
 
 def job_dirs(d):
@@ -127,8 +115,7 @@ try:
         msg = st.get("error", {}).get("message", "")
         check(st["state"] == "failed" and st["error"]["code"] == "io" and name in msg,
               "%s: the job fails with an io error naming %s (%s)" % (fault, name, st.get("error")))
-        left = leftovers_after_save(d.state)
-        check(not left, "%s: no temporary file is left (%s)" % (fault, left))
+        check(not leftovers(d.state), "%s: no temporary file is left (%s)" % (fault, leftovers(d.state)))
         check(not os.path.exists(os.path.join(d.state, "jobs", r["job"], name)), "%s: no %s" % (fault, name))
         c.close()
         check(d.stop() == 0, "%s: aalabd exits 0" % fault)
