@@ -1,5 +1,6 @@
-/* Mesh files (glTF 2.0, OBJ, anything assimp reads) through assimp's C API: checked raw (finite positions
- * within 1e7, indices that name vertices) before assimp's post-processing can hide a fault, then split
+/* Mesh files (glTF 2.0, OBJ, PLY, STL, OFF) through assimp's C API: read first by aalab itself
+ * (gltf_check.c, mesh_text_check.c), checked raw again (finite positions within 1e7, indices that name
+ * vertices) before assimp's post-processing can hide a fault, then split
  * into one mesh per material with node transforms baked in, except where a skin or an animation moves
  * the vertices: those keep their bind-space positions and a rig (scene_rig.c) poses them per frame.
  * Materials and their textures come from the file unless the object overrides them. */
@@ -10,7 +11,6 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -22,17 +22,12 @@
 
 #include "../image/image.h"
 #include "mesh_procedural.h"
+#include "mesh_text_check.h"
 #include "texture.h"
 
 #define POSITION_MAX 1e7 /* as every number in a scene file (SJ_MAX_ABS) */
 
 /* ---------------------------------------------------------------- small helpers */
-
-static bool ends_with(const char *s, const char *suffix)
-{
-	size_t a = strlen(s), b = strlen(suffix);
-	return a >= b && strcasecmp(s + a - b, suffix) == 0;
-}
 
 static mat4 from_ai(const struct aiMatrix4x4 *a) /* assimp is row-major, mat4 column-major */
 {
@@ -104,71 +99,6 @@ __attribute__((format(printf, 3, 4))) static int fail_file(struct loader *L, enu
 
 /* ---------------------------------------------------------------- before assimp */
 
-/* OBJ: assimp goes on silently without a missing .mtl; aalab names it (or warns, when asked). */
-/* A PLY header is ASCII text up to end_header. assimp 5.2's PLY reader loops without end on a header
- * with other bytes in a property line (fuzz_mesh), which would hang whoever loads the scene, so such a
- * header is refused before assimp reads the file. */
-static int check_ply_header(struct loader *L)
-{
-	FILE *f = fopen(L->path, "rb");
-	if (!f)
-		return FAIL(L, AA_ERR_IO, "cannot open: %s", strerror(errno));
-	char line[4096];
-	int rc = 0;
-	for (int n = 1; fgets(line, sizeof line, f); n++) {
-		for (const unsigned char *c = (const unsigned char *)line; *c; c++)
-			if (!(isprint(*c) || *c == '\n' || *c == '\r' || *c == '\t')) {
-				rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d holds a byte that is not ASCII text "
-					  "(0x%02x)", n, *c);
-				break;
-			}
-		if (rc || strncmp(line, "end_header", 10) == 0)
-			break;
-		/* and every line one of the header's keywords (a misspelt one made assimp loop too) */
-		static const char *const keywords[] = {"ply", "format ", "comment", "obj_info", "element ", "property "};
-		bool known = false;
-		for (size_t k = 0; k < sizeof keywords / sizeof keywords[0]; k++)
-			known |= strncmp(line, keywords[k], strlen(keywords[k])) == 0;
-		if (!known) {
-			rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d is not one of ply, format, comment, obj_info, "
-				  "element, property, end_header", n);
-			break;
-		}
-	}
-	fclose(f);
-	return rc;
-}
-
-static int check_obj_libraries(struct loader *L)
-{
-	FILE *f = fopen(L->path, "r");
-	char line[1024];
-	int rc = 0, line_number = 0;
-	if (!f)
-		return FAIL(L, AA_ERR_IO, "cannot open: %s", strerror(errno));
-	while (rc == 0 && fgets(line, sizeof line, f)) {
-		line_number++;
-		char *p = line;
-		while (*p == ' ' || *p == '\t')
-			p++;
-		if (strncmp(p, "mtllib", 6) != 0 || !isspace((unsigned char)p[6]))
-			continue;
-		for (char *name = strtok(p + 6, " \t\r\n"); name && rc == 0; name = strtok(NULL, " \t\r\n")) {
-			char full[PATH_MAX];
-			struct aa_error e = {0};
-			if (aa_resolve_beside(L->path, L->base_dir, name, full, sizeof full, &e) == 0)
-				continue;
-			if (L->options->missing_warn && e.code == AA_ERR_NOT_FOUND)
-				aa_scene_warn(L->scene, "%s: line %d: material library '%s' not found: drawn without its "
-					      "materials", L->shown, line_number, name);
-			else
-				rc = FAIL(L, e.code, "line %d: material library (mtllib) %s", line_number, e.message);
-		}
-	}
-	fclose(f);
-	return rc;
-}
-
 /* assimp's messages, said as what is wrong with which file. */
 static int import_error(struct loader *L)
 {
@@ -191,7 +121,7 @@ static int import_error(struct loader *L)
 static int check_raw(struct loader *L)
 {
 	for (unsigned i = 0; i < L->ai->mNumMeshes; i++) {
-		struct aiMesh *m = L->ai->mMeshes[i];
+		const struct aiMesh *m = L->ai->mMeshes[i];
 		if (m->mNumAnimMeshes)
 			return FAIL(L, AA_ERR_INVALID, "mesh '%s' has morph targets, which aalab does not support",
 				    m->mName.data);
@@ -204,24 +134,11 @@ static int check_raw(struct loader *L)
 				return FAIL(L, AA_ERR_INVALID, "mesh '%s' vertex %u is at (%g, %g, %g): positions must be within "
 					    "%g of the origin", m->mName.data, v, p->x, p->y, p->z, POSITION_MAX);
 		}
-		/* An importer can leave the mesh's primitive types at odds with its faces (fuzz_mesh found an OFF
-		 * file that does), and assimp's triangulation then aborts the process on an assertion: the types
-		 * are set again from the faces themselves. */
-		unsigned types = 0;
-		for (unsigned f = 0; f < m->mNumFaces; f++) {
-			unsigned n = m->mFaces[f].mNumIndices;
-			if (n == 0)
-				return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u has no vertices", m->mName.data, f);
-			types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
-					 : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
-			for (unsigned k = 0; k < n; k++)
+		for (unsigned f = 0; f < m->mNumFaces; f++)
+			for (unsigned k = 0; k < m->mFaces[f].mNumIndices; k++)
 				if (m->mFaces[f].mIndices[k] >= m->mNumVertices)
 					return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u names vertex %u, but the mesh has %u "
 						    "vertices", m->mName.data, f, m->mFaces[f].mIndices[k], m->mNumVertices);
-		}
-		if (types) /* a mesh without faces keeps the importer's types: 0 makes post-processing fail, and
-			    * assimp 5.2 then crashes freeing the scene (an OBJ of vertices alone, fuzz_mesh) */
-			m->mPrimitiveTypes = types;
 	}
 	return 0;
 }
@@ -966,10 +883,8 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 	int first_part = -1, rc = 0;
 	if (L.gltf)
 		rc = aa_gltf_check(s, scene, path, shown, base_dir, &L.gltf_info);
-	else if (ends_with(path, ".obj"))
-		rc = check_obj_libraries(&L);
-	else if (ends_with(path, ".ply"))
-		rc = check_ply_header(&L);
+	else /* OBJ, OFF, PLY, STL: read by aalab first (mesh_text_check.c); any other format is refused */
+		rc = aa_mesh_text_check_file(s, scene, path, shown, base_dir, options->missing_warn);
 	if (rc == 0 && !(L.ai = aiImportFile(path, 0)))
 		rc = import_error(&L);
 	if (rc == 0)

@@ -1,0 +1,9 @@
+# engine/scene: Makefile fragment, included from Makefile.am. aalab's own strict reading of OBJ (+ .mtl),
+# OFF, PLY and STL files before assimp (mesh_text_check.c), and its unit test.
+libaaengine_a_SOURCES += engine/scene/mesh_text_check.h engine/scene/mesh_text_check.c
+
+check_PROGRAMS += tests/unit/test_mesh_text_check
+tests_unit_test_mesh_text_check_SOURCES = tests/unit/test_mesh_text_check.c
+tests_unit_test_mesh_text_check_CFLAGS = $(TEST_CFLAGS)
+tests_unit_test_mesh_text_check_LDADD = $(TEST_LIBS)
+TESTS += tests/unit/test_mesh_text_check
