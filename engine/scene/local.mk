@@ -1,6 +1,8 @@
 # engine/scene: Makefile fragment, included from Makefile.am. aalab's own strict reading of OBJ (+ .mtl),
-# OFF, PLY and STL files before assimp (mesh_text_check.c), and its unit test.
-libaaengine_a_SOURCES += engine/scene/mesh_text_check.h engine/scene/mesh_text_check.c
+# OFF, PLY and STL files before assimp (mesh_text_check.c), and its unit test; the materials of mesh files
+# (mesh_file_materials.c, split from mesh_file.c).
+libaaengine_a_SOURCES += engine/scene/mesh_text_check.h engine/scene/mesh_text_check.c \
+	engine/scene/mesh_file_loader.h engine/scene/mesh_file_materials.c
 
 check_PROGRAMS += tests/unit/test_mesh_text_check
 tests_unit_test_mesh_text_check_SOURCES = tests/unit/test_mesh_text_check.c
