@@ -59,6 +59,8 @@ static const struct {
 	      "usemtl paint\nf 1/1/1 2/2/1 3/3/1\nf -3//-1 -2//-1 -1//-1\nl 1 2\np 3\n", NULL},
 	{OBJ, "v 0 0 0\r\nv 1 0 0 1\r\nv 0 1 0 0.5 0.5 0.5\r\nf 1 2 3\r\n", NULL},
 	{OBJ, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: a face names a vertex that does not exist: vertex (v) 9, but the file has 3"},
+	{OBJ, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n", "line 5: a face names a vertex that does not exist: vertex (v) 4, but the file has 3"},
+	{OBJ, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1e39\nf 1 2 3\n", "line 4: normal (vn) 0: '1e39' is not a finite number"},
 	{OBJ, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/4 2/1 3/1\nvt 0 0\n", "line 4: a face names a vertex that does not exist: texture coordinate (vt) 4, but the file has 1"},
 	{OBJ, "v 0 0 0\nv 1 0 0\nf -3 1 2\nv 0 1 0\n", "line 3: '-3' names vertex (v) -3, before the first"},
 	{OBJ, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "line 4: '0' is not a vertex reference"},
@@ -274,6 +276,31 @@ static void test_binary_stl(void **state)
 	assert_non_null(strstr(why, "binary STL header says 2147483650 triangles"));
 }
 
+/* Lines longer than assimp's OFF reader copies safely, or than any text line aalab reads. */
+static void test_long_lines(void **state)
+{
+	(void)state;
+	char *text = malloc(70100), why[600];
+	assert_non_null(text);
+	int n = sprintf(text, "OFF\n3 1 0\n0 0 0");
+	memset(text + n, ' ', 3995); /* the line is 4000 characters: still read */
+	n += 3995;
+	n += sprintf(text + n, "\n1 0 0\n0 1 0\n3 0 1 2\n");
+	assert_int_equal(aa_mesh_text_check(OFF, text, (size_t)n, NULL, NULL, why, sizeof why), 0);
+	memmove(text + 17, text + 16, (size_t)n - 16); /* 4001 */
+	assert_int_equal(aa_mesh_text_check(OFF, text, (size_t)n + 1, NULL, NULL, why, sizeof why), -1);
+	assert_non_null(strstr(why, "line 3: longer than 4000 characters"));
+	n = sprintf(text, "v 0 0 0\nv 1 0 0\nv 0 1 0\n#");
+	memset(text + n, 'x', 65535); /* the comment line is 65536 characters */
+	n += 65535;
+	n += sprintf(text + n, "\nf 1 2 3\n");
+	assert_int_equal(aa_mesh_text_check(OBJ, text, (size_t)n, NULL, NULL, why, sizeof why), 0);
+	memmove(text + 25, text + 24, (size_t)n - 24);
+	assert_int_equal(aa_mesh_text_check(OBJ, text, (size_t)n + 1, NULL, NULL, why, sizeof why), -1);
+	assert_non_null(strstr(why, "line 4: longer than 65536 characters"));
+	free(text);
+}
+
 /* ---- through the scene loader */
 
 static char dir[256];
@@ -339,6 +366,7 @@ int main(void)
 		cmocka_unit_test(test_cases),
 		cmocka_unit_test(test_binary_ply),
 		cmocka_unit_test(test_binary_stl),
+		cmocka_unit_test(test_long_lines),
 		cmocka_unit_test(test_through_the_loader),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
