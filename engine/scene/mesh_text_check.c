@@ -568,6 +568,8 @@ static int ply_header(struct text *t, struct ply *ply)
 		carriage_return |= t->crlf;
 		if (t->n == 0)
 			return fail_at(t, "an empty line in the header");
+		if (!format && !is(t, 0, "format")) /* assimp reads the format from line 2 alone */
+			return fail_at(t, "the second line must be the format line");
 		if (is(t, 0, "comment") || is(t, 0, "obj_info"))
 			continue;
 		if (is(t, 0, "end_header") && t->n == 1)
@@ -584,8 +586,6 @@ static int ply_header(struct text *t, struct ply *ply)
 					       shown(t, 1, b, sizeof b));
 			continue;
 		}
-		if (!format)
-			return fail_at(t, "'%s' before the format line", shown(t, 0, b, sizeof b));
 		if (is(t, 0, "element")) {
 			const char *want = ply->elements == 0 ? "vertex" : "face";
 			if (t->n != 3)
@@ -892,7 +892,7 @@ static int check_stl(struct text *t)
 					  n, (unsigned long long)(84 + 50 * (uint64_t)n), size);
 	}
 	const char *s = t->p;
-	while (s < t->end && isspace((unsigned char)*s))
+	while (s < t->end && (*s == ' ' || *s == '\t')) /* as assimp: not line ends */
 		s++;
 	if (t->end - s < 5 || memcmp(s, "solid", 5) != 0) {
 		if (size >= 84) {

@@ -118,7 +118,8 @@ static const struct {
 	      "element face 1\nproperty list float int vertex_indices\n", "line 8: list property 'vertex_indices' must have integer count"},
 	{PLY, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
 	      "element face 1\nproperty list uchar int vertex_indices\n", "the header has no end_header line"},
-	{PLY, "ply\nelement vertex 3\n", "line 2: 'element' before the format line"},
+	{PLY, "ply\nelement vertex 3\n", "line 2: the second line must be the format line"},
+	{PLY, "ply\ncomment first\nformat ascii 1.0\n", "line 2: the second line must be the format line"},
 	{PLY, "pl\n", "line 1: a PLY file starts with the line ply"},
 	/* STL (ASCII) */
 	{STL, "solid t\n" STL_FACET STL_FACET "endsolid t\nsolid u\n" STL_FACET "endsolid u\n", NULL},
@@ -133,6 +134,8 @@ static const struct {
 	 "line 6: vertex 2 is at (0, -1e+08, 0): positions must be within 1e+07"},
 	{STL, "solid t\n" STL_FACET "endsolid t\nfacet\n", "line 10: expected 'solid' or the end of the file after endsolid"},
 	{STL, "sold t\n", "is neither ASCII STL (starting with solid) nor binary STL (at least 84 bytes)"},
+	{STL, "\nsolid t\n" STL_FACET "endsolid t\n", "is neither ASCII STL (starting with solid)"},
+	{STL, " \tsolid t\n" STL_FACET "endsolid t\n", NULL},
 };
 
 static void test_cases(void **state)
