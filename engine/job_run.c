@@ -164,6 +164,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 	res->warnings_dropped = js->scene->warnings_dropped;
 	memcpy(res->warnings, js->scene->warnings, sizeof res->warnings);
 	res->reference.samples = spec->reference_samples;
+	res->reference.auto_samples = spec->reference_auto;
+	res->reference.target_psnr = spec->reference_auto ? spec->reference_target_psnr : NAN;
 	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
 	res->reference.memory_bytes = js->reference.memory_bytes;
 	res->reference.frames = calloc((size_t)spec->frames, sizeof *res->reference.frames);
@@ -226,14 +228,24 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 		return 0;
 	}
 	rf->frame = js->spec->first_frame + ordinal;
-	if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms, err))
-		return -1;
-	rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
-	aa_image_encode_srgb8(&js->full, &js->ref8);
-	aa_image_encode_srgb8(&js->half, &js->half8);
 	struct aa_metrics m;
-	if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
-		return -1;
+	if (js->spec->reference_auto) {
+		if (aa_reference_render_auto(&js->reference, &js->timer, js->spec->reference_target_psnr, &js->full,
+					     &js->half, &js->ref8, &js->half8, &rf->samples, &m, &rf->gpu_ms,
+					     &rf->cpu_ms, err))
+			return -1;
+		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+	} else {
+		if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms,
+					err))
+			return -1;
+		rf->samples = js->spec->reference_samples;
+		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+		aa_image_encode_srgb8(&js->full, &js->ref8);
+		aa_image_encode_srgb8(&js->half, &js->half8);
+		if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
+			return -1;
+	}
 	rf->convergence_mse = m.mse;
 	rf->convergence_psnr = m.psnr;
 	rf->convergence_identical = m.identical;

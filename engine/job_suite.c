@@ -505,6 +505,9 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size)
 				 spec->reference_samples, "methods", methods, "timing", "repeat", spec->timing_repeat);
 	if (what && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT) /* as given only: earlier hashes stay */
 		json_object_set_new(what, "over_threshold", json_real(spec->over_threshold));
+	if (what && spec->reference_auto) /* only then: the hash of other jobs is as before */
+		json_object_set_new(json_object_get(what, "reference"), "target_psnr",
+				    json_real(spec->reference_target_psnr));
 	char *text = what ? json_dumps(what, JSON_COMPACT | JSON_SORT_KEYS) : NULL;
 	json_decref(what);
 	char hex[65] = "";
