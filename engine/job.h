@@ -86,6 +86,7 @@ struct aa_job_spec {
 	 * convergence PSNR reaches reference_target_psnr or N reaches reference_samples (reference.max_samples) */
 	bool reference_auto;
 	double reference_target_psnr;
+	bool verdicts;             /* job key "verdicts": judge every case and method (docs/hard-cases.md) */
 };
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
@@ -153,6 +154,10 @@ struct aa_frame_result {
 				    * job's over_threshold (idiff's count; 8-bit sRGB) */
 	double flicker;            /* mean |(m[t] - m[t-1]) - (r[t] - r[t-1])| over pixels and R,G,B, 8-bit
 				    * units: change between frames the reference does not have; NAN at frame 0 */
+	long out_of_range;         /* finite values of the float output outside the colour range (negative
+				    * R, G or B, below -1/1024): a verdict of docs/hard-cases.md */
+	double change, ref_change; /* mean |m[t] - m[t-1]| and |r[t] - r[t-1]| (8-bit sRGB, R,G,B); NAN at
+				    * frame 0: the "stuck" verdict */
 };
 
 /* One timed render of a method's frame: the scored one (repeat 0) or a re-timing (timing.repeat). */

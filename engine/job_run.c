@@ -45,6 +45,17 @@ static long count_nonfinite(const struct aa_image_rgbaf *img)
 	return n;
 }
 
+/* Finite R, G or B values below -1/1024: negative light, which no display or later pass expects. */
+static long count_out_of_range(const struct aa_image_rgbaf *img)
+{
+	long n = 0;
+	size_t count = (size_t)img->width * img->height;
+	for (size_t i = 0; i < count; i++)
+		for (int c = 0; c < 3; c++)
+			n += img->pixels[i * 4 + c] < -1.0f / 1024.0f;
+	return n;
+}
+
 /* |test - ref| x 4 per channel, as seed 002 shows errors. */
 static void diff_image(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		       struct aa_image_rgba8 *out)
@@ -388,10 +399,15 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 		return -1;
 	fr->over_threshold = aa_metrics_count_over(&js->ref8, &js->out8, js->result->spec.over_threshold);
 	diff_image(&js->ref8, &js->out8, &js->diff8);
+	fr->out_of_range = count_out_of_range(&js->output);
 	fr->flicker = NAN;
+	fr->change = fr->ref_change = NAN;
 	if (js->prev_out8[i].pixels) {
-		if (ctx->ordinal > 0)
+		if (ctx->ordinal > 0) {
 			fr->flicker = aa_metrics_flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
+			fr->change = aa_metrics_mean_change(&js->out8, &js->prev_out8[i]);
+			fr->ref_change = aa_metrics_mean_change(&js->ref8, &js->prev_ref8);
+		}
 		memcpy(js->prev_out8[i].pixels, js->out8.pixels, (size_t)ctx->width * ctx->height * 4);
 	}
 	js->result->methods[i].frame_count = ctx->ordinal + 1;

@@ -15,7 +15,7 @@
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
 					"reference", "methods", "keep_frames", "linear_frames", "exr_frames", "viewer", "over_threshold", "name", "timing",
-					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", NULL };
+					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", "verdicts", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const shard_keys[] = { "warmup", NULL };
 static const char *const reference_keys[] = { "samples", "target_psnr", "max_samples", NULL };

@@ -215,6 +215,9 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "fourier", fourier_json(b, f->metrics.fourier));
 	put(b, obj, "nonfinite", json_integer(f->nonfinite));
 	put(b, obj, "over_threshold", json_integer(f->over_threshold));
+	put(b, obj, "out_of_range", json_integer(f->out_of_range));
+	put(b, obj, "change", num(f->change));
+	put(b, obj, "reference_change", num(f->ref_change));
 	put(b, obj, "image", image_path(r, "frames", m->label, ordinal));
 	put(b, obj, "diff", image_path(r, "diff", m->label, ordinal));
 	put(b, obj, "flip_map", image_path(r, "flip", m->label, ordinal));

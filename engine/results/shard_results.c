@@ -166,6 +166,9 @@ static int read_frames(const json_t *jm, const char *path, int first_frame, int 
 		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
 		f->over_threshold = (long)json_integer_value(json_object_get(item, "over_threshold"));
 		f->flicker = jnum(item, "flicker");
+		f->out_of_range = (long)json_integer_value(json_object_get(item, "out_of_range"));
+		f->change = jnum(item, "change");
+		f->ref_change = jnum(item, "reference_change");
 	}
 	m->frame_count = frames;
 	snprintf(where, sizeof where, "%s.timed_renders", path);
