@@ -33,4 +33,24 @@ expect_stderr "verdicts? failed" "the failure is said on stderr"
 grep -Eq "floor +pass 0 +pass 0 .*FAIL -[0-9.]+" "$TMP/out" && pass "the table shows floor's FAIL" ||
 	fail "table: $(grep floor "$TMP/out")"
 [ -s "$TMP/b/results.json" ] && pass "the results of a run with failed verdicts are kept" || fail "results discarded"
+
+# tonemapped_resolve: on hdr-fireflies Karis' weights keep a sub-pixel emitter (1e3-1e5) from filling its
+# whole resolve footprint with white, so fewer pixels saturate than with the linear box resolve
+expect_status 0 "ssaa and msaa with and without tonemapped_resolve" -- "$AALAB" run --local --quiet \
+	--scene hdr-fireflies --size 64x36 --frames 1 --reference-samples 8 --out "$TMP/tm" \
+	--methods "ssaa:4,ssaa:samples=4,tonemapped_resolve=true,msaa:4,msaa:samples=4,tonemapped_resolve=true"
+/usr/bin/python3 - "$TMP/tm/frames" <<'PY' >"$TMP/tm.txt" && pass "tone-mapped resolves saturate fewer pixels: $(cat "$TMP/tm.txt")" || fail "tonemapped_resolve: $(cat "$TMP/tm.txt")"
+import sys
+import numpy as np
+from skimage import io
+def saturated(name):
+    a = io.imread("%s/%s/0000.png" % (sys.argv[1], name))[..., :3]
+    return int((a.min(axis=2) >= 250).sum())
+n = {m: saturated(m) for m in ["ssaa_4", "ssaa_4_tonemapped_resolve-true", "msaa_4", "msaa_4_tonemapped_resolve-true"]}
+print(n)
+assert n["ssaa_4_tonemapped_resolve-true"] < n["ssaa_4"] and n["msaa_4_tonemapped_resolve-true"] < n["msaa_4"], n
+PYexpect_status 2 "msaa's virtual path refuses tonemapped_resolve" -- "$AALAB" run --local --quiet \
+	--scene thin-wires --size 32x18 --frames 1 --reference-samples 2 --out "$TMP/v" \
+	--methods "msaa:samples=8,tonemapped_resolve=true"
+expect_stderr "tonemapped_resolve" "the error names the parameter"
 finish
