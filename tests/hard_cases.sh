@@ -49,7 +49,8 @@ def saturated(name):
 n = {m: saturated(m) for m in ["ssaa_4", "ssaa_4_tonemapped_resolve-true", "msaa_4", "msaa_4_tonemapped_resolve-true"]}
 print(n)
 assert n["ssaa_4_tonemapped_resolve-true"] < n["ssaa_4"] and n["msaa_4_tonemapped_resolve-true"] < n["msaa_4"], n
-PYexpect_status 2 "msaa's virtual path refuses tonemapped_resolve" -- "$AALAB" run --local --quiet \
+PY
+expect_status 2 "msaa's virtual path refuses tonemapped_resolve" -- "$AALAB" run --local --quiet \
 	--scene thin-wires --size 32x18 --frames 1 --reference-samples 2 --out "$TMP/v" \
 	--methods "msaa:samples=8,tonemapped_resolve=true"
 expect_stderr "tonemapped_resolve" "the error names the parameter"
