@@ -39,6 +39,9 @@ int cmd_suites(int argc, char **argv);
 extern const char aa_compare_help[];
 /* suite_table.c: the summary table of a suite's results.json, across cases (method rows per case). */
 void aa_print_suite_table(json_t *results, FILE *out);
+/* client/verdict_table.c: the verdicts of a suite run with "verdicts": true; returns how many failed that
+ * must hold (0 when the results have no verdicts). */
+int aa_print_verdict_table(json_t *results, FILE *out);
 /* Prints the table of a results.json document: a suite's summary, or the methods of a job. */
 void aa_print_results_any(json_t *results, FILE *out);
 extern const char aa_diff_help[];

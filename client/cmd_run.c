@@ -32,7 +32,8 @@ const char aa_run_help[] =
 	"  --frames N              frames to render (default 1)\n"
 	"  --first-frame N         frame index on the path to start at (default 0)\n"
 	"  --size WxH              image size (default 640x360)\n"
-	"  --reference-samples N   samples of the accumulated reference, even (default 64)\n"
+	"  --reference-samples N   samples of the accumulated reference, even (default 64); auto: doubled per\n"
+	"                          frame until the N/2-vs-N PSNR reaches 45 dB (cap 256)\n"
 	"  --repeat N              render and time each method's frame N times, the first scored, for\n"
 	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
 	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n"
@@ -132,6 +133,7 @@ int cmd_run(int argc, char **argv)
 	struct aa_job_spec spec;
 	bool spec_parsed = false;
 	int status = AA_EXIT_USAGE, c, idx;
+	bool verdicts_failed = false; /* the run succeeded and its results are kept, but it exits 1 */
 	optind = 1;
 	while ((c = getopt_long(argc, argv, "", opts, &idx)) != -1) {
 		switch (c) {
@@ -301,8 +303,16 @@ int cmd_run(int argc, char **argv)
 	} else if (spec.is_suite) {
 		json_t *j = aa_suite_results_to_json(result);
 		aa_print_suite_table(j, stdout);
+		/* a verdict the docs say must hold that fails is a failed run (the results are kept) */
+		const int failed = aa_print_verdict_table(j, stdout);
 		json_decref(j);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
+		if (failed) {
+			fflush(stdout);
+			fprintf(stderr, "aalab run: %d verdict%s failed (docs/hard-cases.md)\n", failed,
+				failed == 1 ? "" : "s");
+			verdicts_failed = true;
+		}
 	} else {
 		aa_print_table(result->cases[0], stdout);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
@@ -318,5 +328,5 @@ out:
 	if (spec_parsed)
 		aa_job_spec_release(&spec);
 	json_decref(overrides);
-	return status;
+	return status == AA_EXIT_OK && verdicts_failed ? AA_EXIT_FAILED : status;
 }

@@ -40,6 +40,10 @@ int aa_job_flag(const char *cmd, const char *flag, const char *value, json_t *jo
 			return 0;
 		}
 	if (!strcmp(flag, "reference-samples")) {
+		if (!strcmp(value, "auto")) {
+			json_object_set_new(job, "reference", json_pack("{ss}", "samples", "auto"));
+			return 0;
+		}
 		if (parse_int(cmd, "reference.samples", value, &n))
 			return -1;
 		json_object_set_new(job, "reference", json_pack("{sI}", "samples", n));

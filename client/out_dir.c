@@ -40,13 +40,15 @@ static void remove_tree(const char *dir)
 	nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
 }
 
-/* An aalab result is a folder with a results.json that has the results' own fields. */
+/* An aalab result is a folder with a results.json that has the results' own fields (a suite's: its cases). */
 static bool is_aalab_result(const char *dir)
 {
 	char path[1100];
 	snprintf(path, sizeof path, "%s/results.json", dir);
 	json_t *r = json_load_file(path, 0, NULL);
-	bool yes = json_is_object(r) && json_object_get(r, "methods") && json_object_get(r, "reference") &&
+	bool yes = json_is_object(r) &&
+		   ((json_object_get(r, "methods") && json_object_get(r, "reference")) ||
+		    json_is_array(json_object_get(r, "cases"))) &&
 		   json_object_get(r, "job");
 	json_decref(r);
 	return yes;

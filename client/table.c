@@ -24,10 +24,31 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 	conv_mse /= r->reference.frame_count > 0 ? r->reference.frame_count : 1;
 	char conv[32];
 	format_psnr(aa_psnr_from_mse(conv_mse, 255.0), conv_mse == 0.0, conv, sizeof conv);
-	fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples (convergence %d vs %d: "
-		"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
-		r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
-		r->reference.samples, conv, r->device_name);
+	if (r->reference.auto_samples) {
+		/* the N each frame reached, as a range: "auto" alone would hide what the reference cost */
+		int lo = 0, hi = 0, capped = 0;
+		for (int f = 0; f < r->reference.frame_count; f++) {
+			const struct aa_reference_frame *rf = &r->reference.frames[f];
+			lo = f == 0 || rf->samples < lo ? rf->samples : lo;
+			hi = rf->samples > hi ? rf->samples : hi;
+			capped += rf->samples >= r->reference.samples && !rf->convergence_identical &&
+				  !(rf->convergence_psnr >= r->reference.target_psnr);
+		}
+		char reached[96];
+		snprintf(reached, sizeof reached, lo == hi ? "%d samples" : "%d-%d samples per frame", lo, hi);
+		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s (target %.1f dB, cap %d; "
+			"convergence N/2 vs N: %s dB", r->scene_name, r->spec.path, r->spec.width, r->spec.height,
+			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, r->reference.target_psnr,
+			r->reference.samples, conv);
+		if (capped)
+			fprintf(out, "; %d frame%s stopped at the cap under the target", capped, capped == 1 ? "" : "s");
+		fprintf(out, "), %s\n\n", r->device_name);
+	} else {
+		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples (convergence %d vs %d: "
+			"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
+			r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
+			r->reference.samples, conv, r->device_name);
+	}
 	bool sequence = r->spec.frames > 1;
 	/* GPU time over every timed render (frames x --repeat): median, the 10th-90th percentile range, count */
 	char over_head[24]; /* idiff's count: pixels with a channel off by more than the threshold */

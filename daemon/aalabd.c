@@ -367,6 +367,7 @@ int main(int argc, char **argv)
 	store->retention_jobs = d->cfg.retention_jobs;
 	store->retention_bytes = d->cfg.retention_bytes;
 	store->max_interruptions = d->cfg.max_job_interruptions;
+	store->render_nice_value = render_nice_value(d->cfg.render_nice);
 	int status = 1;
 	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
@@ -395,7 +396,7 @@ int main(int argc, char **argv)
 			fprintf(stderr, "aalabd: %s\n", err);
 			goto out;
 		}
-	} else if (aa_engine_create(&eo, &store->engine, &aerr)) {
+	} else if (render_engine_create(&eo, store->render_nice_value, &store->engine, &aerr)) {
 		fprintf(stderr, "aalabd: %s\n", aerr.message);
 		goto out;
 	} else {

@@ -35,6 +35,7 @@ void config_defaults(struct config *c)
 	c->client_buffer_bytes = 4 << 20;
 	c->retention_jobs = 200;
 	c->max_job_interruptions = 3;
+	c->render_nice = 5;
 	c->retention_bytes = 10ull << 30;
 	c->scene_cache_bytes = 512ull << 20;
 	c->drain_timeout_s = 60;
@@ -72,6 +73,7 @@ static const struct key keys[] = {
 	NUM("verbose", K_INT, verbose, 0, 3),
 	{"allow-user-methods", K_BOOL, offsetof(struct config, allow_user_methods), 0, 0, 0},
 	NUM("job-time-limit", K_INT, job_time_limit_s, 0, 86400 * 7),
+	NUM("render-nice", K_INT, render_nice, 0, 19),
 };
 
 /* Sets one option by name; used by the config file and by the command line. */
@@ -184,4 +186,6 @@ void config_apply_reload(struct config *to, const struct config *from)
 	memcpy(to->config_file, keep.config_file, sizeof to->config_file);
 	/* whether GPU work runs in a worker process is decided at start-up */
 	to->allow_user_methods = keep.allow_user_methods;
+	/* the rendering threads took their priority when they started */
+	to->render_nice = keep.render_nice;
 }

@@ -36,6 +36,7 @@ struct config {
 	size_t client_buffer_bytes; /* output kept per client; beyond it frames are dropped from the stream */
 	int retention_jobs;         /* finished jobs kept */
 	int max_job_interruptions;  /* crashes in a row during one job before it is failed (0: never) */
+	int render_nice;            /* nice levels the rendering threads run below the protocol loop */
 	uint64_t retention_bytes;   /* bytes of finished jobs kept */
 	uint64_t scene_cache_bytes;
 	int drain_timeout_s;        /* SIGTERM: how long the running job may take to finish */

@@ -78,6 +78,7 @@ struct store {
 	char state_dir[1024], device[128];  /* for the process's command line */
 	char device_name[256];              /* what the process opened */
 	struct worker_process *process;     /* the worker thread's */
+	int render_nice_value;              /* render-nice, as a nice value: the worker thread's and process's */
 	struct scene_cache_stats process_scenes; /* the process's scene cache, after its last job */
 };
 

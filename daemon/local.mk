@@ -6,7 +6,8 @@ aalabd_SOURCES = \
 	daemon/aalabd.c daemon/daemon.h daemon/loop.h daemon/loop.c daemon/config.c daemon/listen.c \
 	daemon/conn.c daemon/protocol.c daemon/stream.c daemon/http.c daemon/http_parse.h daemon/http_parse.c \
 	daemon/protocol_parse.h daemon/protocol_parse.c \
-	daemon/jobs.h daemon/jobs.c daemon/worker.h daemon/worker.c daemon/worker_process.c daemon/scene_cache.c
+	daemon/jobs.h daemon/jobs.c daemon/worker.h daemon/worker.c daemon/worker_process.c daemon/scene_cache.c \
+	daemon/render_priority.c
 aalabd_CPPFLAGS = $(AM_CPPFLAGS) \
 	-DAA_SOURCE_WEB_DIR='"$(abs_top_srcdir)/web"' -DAA_INSTALLED_WEB_DIR='"$(pkgdatadir)/web"'
 aalabd_LDADD = $(ENGINE_LIBS)

@@ -446,6 +446,7 @@ static struct job *next_queued(struct store *s)
 static void *worker_main(void *arg)
 {
 	struct store *s = arg;
+	render_priority_apply(s->render_nice_value); /* it compiles pipelines and computes the metrics */
 	pthread_mutex_lock(&s->lock);
 	for (;;) {
 		struct job *job = NULL;

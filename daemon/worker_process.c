@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -344,6 +345,8 @@ static int process_spawn(struct store *s, char *err, size_t err_size)
 		else if (dup2(sv[1], 3) < 0)
 			_exit(1);
 		close_range(4, ~0U, 0);
+		/* the process renders: below the loop, like the worker thread (render_priority.c) */
+		(void)setpriority(PRIO_PROCESS, 0, s->render_nice_value);
 		execv("/proc/self/exe", argv);
 		_exit(127);
 	}

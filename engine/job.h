@@ -82,6 +82,11 @@ struct aa_job_spec {
 	 * method order rotates as in the unsharded run */
 	int warmup_frames;
 	int order_ordinal;
+	/* reference.samples "auto": per frame, N doubles from AA_REFERENCE_AUTO_START until the N/2-vs-N
+	 * convergence PSNR reaches reference_target_psnr or N reaches reference_samples (reference.max_samples) */
+	bool reference_auto;
+	double reference_target_psnr;
+	bool verdicts;             /* job key "verdicts": judge every case and method (docs/hard-cases.md) */
 };
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
@@ -119,6 +124,8 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size);
 #define AA_MAX_SIZE 8192
 #define AA_MAX_FRAMES 100000
 #define AA_MAX_REFERENCE_SAMPLES 4096
+#define AA_REFERENCE_AUTO_TARGET_PSNR 45.0  /* reference.target_psnr's default */
+#define AA_REFERENCE_AUTO_MAX_SAMPLES 256   /* reference.max_samples' default */
 #define AA_MAX_REPEAT 100
 #define AA_MAX_SHARD_WARMUP 1000
 #define AA_OVER_THRESHOLD_DEFAULT 0.01 /* the report viewer's default: more than 2 of 255 levels */
@@ -147,6 +154,10 @@ struct aa_frame_result {
 				    * job's over_threshold (idiff's count; 8-bit sRGB) */
 	double flicker;            /* mean |(m[t] - m[t-1]) - (r[t] - r[t-1])| over pixels and R,G,B, 8-bit
 				    * units: change between frames the reference does not have; NAN at frame 0 */
+	long out_of_range;         /* finite values of the float output outside the colour range (negative
+				    * R, G or B, below -1/1024): a verdict of docs/hard-cases.md */
+	double change, ref_change; /* mean |m[t] - m[t-1]| and |r[t] - r[t-1]| (8-bit sRGB, R,G,B); NAN at
+				    * frame 0: the "stuck" verdict */
 };
 
 /* One timed render of a method's frame: the scored one (repeat 0) or a re-timing (timing.repeat). */
@@ -182,10 +193,13 @@ struct aa_reference_frame {
 	double convergence_mse;
 	long nonfinite;            /* NaN/Inf values in the accumulated float image (must be 0) */
 	bool reused;               /* static camera, nothing moves: frame 0's reference, not re-rendered */
+	int samples;               /* N this frame's reference used (reference.samples "auto": the N reached) */
 };
 
 struct aa_reference_result {
-	int samples;
+	int samples;               /* N, or with auto_samples the cap (reference.max_samples) */
+	bool auto_samples;         /* reference.samples "auto": each frame's N is in frames[].samples */
+	double target_psnr;        /* with auto_samples */
 	char pattern[32];          /* "halton-2-3" */
 	uint64_t memory_bytes;
 	int frame_count;

@@ -45,6 +45,17 @@ static long count_nonfinite(const struct aa_image_rgbaf *img)
 	return n;
 }
 
+/* Finite R, G or B values below -1/1024: negative light, which no display or later pass expects. */
+static long count_out_of_range(const struct aa_image_rgbaf *img)
+{
+	long n = 0;
+	size_t count = (size_t)img->width * img->height;
+	for (size_t i = 0; i < count; i++)
+		for (int c = 0; c < 3; c++)
+			n += img->pixels[i * 4 + c] < -1.0f / 1024.0f;
+	return n;
+}
+
 /* |test - ref| x 4 per channel, as seed 002 shows errors. */
 static void diff_image(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		       struct aa_image_rgba8 *out)
@@ -164,6 +175,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 	res->warnings_dropped = js->scene->warnings_dropped;
 	memcpy(res->warnings, js->scene->warnings, sizeof res->warnings);
 	res->reference.samples = spec->reference_samples;
+	res->reference.auto_samples = spec->reference_auto;
+	res->reference.target_psnr = spec->reference_auto ? spec->reference_target_psnr : NAN;
 	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
 	res->reference.memory_bytes = js->reference.memory_bytes;
 	res->reference.frames = calloc((size_t)spec->frames, sizeof *res->reference.frames);
@@ -226,14 +239,24 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 		return 0;
 	}
 	rf->frame = js->spec->first_frame + ordinal;
-	if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms, err))
-		return -1;
-	rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
-	aa_image_encode_srgb8(&js->full, &js->ref8);
-	aa_image_encode_srgb8(&js->half, &js->half8);
 	struct aa_metrics m;
-	if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
-		return -1;
+	if (js->spec->reference_auto) {
+		if (aa_reference_render_auto(&js->reference, &js->timer, js->spec->reference_target_psnr, &js->full,
+					     &js->half, &js->ref8, &js->half8, &rf->samples, &m, &rf->gpu_ms,
+					     &rf->cpu_ms, err))
+			return -1;
+		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+	} else {
+		if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms,
+					err))
+			return -1;
+		rf->samples = js->spec->reference_samples;
+		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+		aa_image_encode_srgb8(&js->full, &js->ref8);
+		aa_image_encode_srgb8(&js->half, &js->half8);
+		if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
+			return -1;
+	}
 	rf->convergence_mse = m.mse;
 	rf->convergence_psnr = m.psnr;
 	rf->convergence_identical = m.identical;
@@ -376,10 +399,15 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 		return -1;
 	fr->over_threshold = aa_metrics_count_over(&js->ref8, &js->out8, js->result->spec.over_threshold);
 	diff_image(&js->ref8, &js->out8, &js->diff8);
+	fr->out_of_range = count_out_of_range(&js->output);
 	fr->flicker = NAN;
+	fr->change = fr->ref_change = NAN;
 	if (js->prev_out8[i].pixels) {
-		if (ctx->ordinal > 0)
+		if (ctx->ordinal > 0) {
 			fr->flicker = aa_metrics_flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
+			fr->change = aa_metrics_mean_change(&js->out8, &js->prev_out8[i]);
+			fr->ref_change = aa_metrics_mean_change(&js->ref8, &js->prev_ref8);
+		}
 		memcpy(js->prev_out8[i].pixels, js->out8.pixels, (size_t)ctx->width * ctx->height * 4);
 	}
 	js->result->methods[i].frame_count = ctx->ordinal + 1;

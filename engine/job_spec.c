@@ -15,10 +15,10 @@
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
 					"reference", "methods", "keep_frames", "linear_frames", "exr_frames", "viewer", "over_threshold", "name", "timing",
-					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", NULL };
+					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", "verdicts", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const shard_keys[] = { "warmup", NULL };
-static const char *const reference_keys[] = { "samples", NULL };
+static const char *const reference_keys[] = { "samples", "target_psnr", "max_samples", NULL };
 static const char *const method_keys[] = { "name", "params", NULL };
 
 /* Every job error carries the JSON path of the field; the message does not repeat it, since callers
@@ -354,8 +354,40 @@ static int parse_reference(const json_t *v, struct aa_job_spec *s, struct aa_err
 	if (check_keys(v, "reference", reference_keys, err) < 0)
 		return -1;
 	const json_t *samples = json_object_get(v, "samples");
+	const json_t *target = json_object_get(v, "target_psnr"), *cap = json_object_get(v, "max_samples");
+	if (json_is_string(samples)) {
+		if (strcmp(json_string_value(samples), "auto") != 0)
+			return bad(err, AA_ERR_INVALID, "reference.samples",
+				   "expected an even integer or \"auto\", got the string \"%.32s\"",
+				   json_string_value(samples));
+		s->reference_auto = true;
+		s->reference_target_psnr = AA_REFERENCE_AUTO_TARGET_PSNR;
+		s->reference_samples = AA_REFERENCE_AUTO_MAX_SAMPLES;
+		if (target) {
+			if (!json_is_number(target))
+				return bad(err, AA_ERR_INVALID, "reference.target_psnr", "expected a number of dB, got %s",
+					   type_name(target));
+			const double t = json_number_value(target);
+			if (!(t >= 20.0 && t <= 80.0))
+				return bad(err, AA_ERR_INVALID, "reference.target_psnr",
+					   "%g is out of range; valid range: 20 to 80 dB", t);
+			s->reference_target_psnr = t;
+		}
+		/* doubling from 8 reaches the cap exactly when it is a power of two */
+		if (cap && get_int(cap, "reference.max_samples", 8, AA_MAX_REFERENCE_SAMPLES, &s->reference_samples,
+				   err) < 0)
+			return -1;
+		if (s->reference_samples & (s->reference_samples - 1))
+			return bad(err, AA_ERR_INVALID, "reference.max_samples",
+				   "%d is not a power of two; N doubles from 8 up to it", s->reference_samples);
+		return 0;
+	}
+	if (target || cap)
+		return bad(err, AA_ERR_INVALID, target ? "reference.target_psnr" : "reference.max_samples",
+			   "applies only with \"samples\": \"auto\"");
 	if (!samples)
 		return 0;
+	s->reference_auto = false;
 	if (get_int(samples, "reference.samples", 2, AA_MAX_REFERENCE_SAMPLES, &s->reference_samples, err) < 0)
 		return -1;
 	if (s->reference_samples % 2 != 0)
@@ -566,6 +598,10 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 				"first_frame", spec->first_frame, "reference", "samples", spec->reference_samples,
 				"methods", methods, "keep_frames", spec->keep_frames, "linear_frames",
 				spec->linear_frames, "name", spec->name, "timing", "repeat", spec->timing_repeat);
+	if (job && spec->reference_auto)
+		json_object_set_new(job, "reference", json_pack("{s:s, s:f, s:i}", "samples", "auto", "target_psnr",
+								spec->reference_target_psnr, "max_samples",
+								spec->reference_samples));
 	aa_job_suite_to_json(spec, job);
 	if (job && spec->shard_warmup >= 0) /* only when given: the canonical form of other jobs is as before */
 		json_object_set_new(job, "shard", json_pack("{s:i}", "warmup", spec->shard_warmup));

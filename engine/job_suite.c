@@ -336,6 +336,11 @@ int aa_job_suite_from_json(const json_t *job, struct aa_job_spec *s, struct aa_e
 	}
 	if ((v = json_object_get(job, "labels")) && parse_labels(v, s, err) < 0)
 		return -1;
+	if ((v = json_object_get(job, "verdicts"))) { /* docs/hard-cases.md */
+		if (!json_is_boolean(v))
+			return aa_error_set(err, AA_ERR_INVALID, "verdicts", "expected true or false");
+		s->verdicts = json_is_true(v);
+	}
 	if ((v = json_object_get(job, "baseline"))) {
 		struct aa_baseline b;
 		if (aa_job_parse_string(v, "baseline", false, s->baseline, sizeof s->baseline, err) < 0 ||
@@ -422,6 +427,8 @@ void aa_job_suite_to_json(const struct aa_job_spec *spec, json_t *job)
 		json_object_set_new(job, "labels", labels_json(spec));
 	if (spec->baseline[0])
 		json_object_set_new(job, "baseline", json_string(spec->baseline));
+	if (spec->verdicts)
+		json_object_set_new(job, "verdicts", json_true());
 	if (!spec->is_suite)
 		return;
 	const char *const single[] = {"scene", "path", "size", "frames", "first_frame"};
@@ -505,6 +512,9 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size)
 				 spec->reference_samples, "methods", methods, "timing", "repeat", spec->timing_repeat);
 	if (what && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT) /* as given only: earlier hashes stay */
 		json_object_set_new(what, "over_threshold", json_real(spec->over_threshold));
+	if (what && spec->reference_auto) /* only then: the hash of other jobs is as before */
+		json_object_set_new(json_object_get(what, "reference"), "target_psnr",
+				    json_real(spec->reference_target_psnr));
 	char *text = what ? json_dumps(what, JSON_COMPACT | JSON_SORT_KEYS) : NULL;
 	json_decref(what);
 	char hex[65] = "";

@@ -52,6 +52,10 @@ TESTS += tests/unit/test_scene_known
 TESTS += tests/integration/daemon_bounds.py
 EXTRA_DIST += tests/integration/daemon_bounds.py
 
+# render-nice: aalabd renders below its protocol loop's priority (threads, worker process, bad values)
+TESTS += tests/integration/daemon_priority.py
+EXTRA_DIST += tests/integration/daemon_priority.py
+
 # `make update-golden`: computes every golden file anew, shows the diff against the committed one and asks
 # before replacing it (ACCEPT=yes replaces without asking; ACCEPT=no only shows). tests/golden/README.md.
 GOLDEN_TEST_BINARIES = tests/integration/test_golden tests/integration/test_temporal_long

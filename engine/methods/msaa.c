@@ -25,6 +25,9 @@ static const struct aa_param_def msaa_params[] = {
 	{.name = "alpha_to_coverage", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
 	 .help = "cut-out materials: alpha sets how many of the N samples a fragment covers, instead of one "
 		 "alpha test per pixel"},
+	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "resolve the samples with Karis' weights 1/(1+luma) (a tone-mapped average) in a pass of its own "
+		 "instead of the render pass's box resolve (hardware path only)"},
 };
 
 struct aa_method_state {
@@ -33,10 +36,15 @@ struct aa_method_state {
 	bool hardware;
 	struct aa_scene_target target;      /* hardware path */
 	struct aa_sample_accumulator average; /* virtual path: RGBA32F average of the sample images */
+	bool tonemapped;                    /* tonemapped_resolve: the Karis pass below replaces the box resolve */
+	struct aa_gpu_image karis_output;
+	struct aa_fullscreen_pass karis;
 };
 
 static void msaa_destroy(struct aa_method_state *s)
 {
+	aa_fullscreen_pass_destroy(s->r, &s->karis);
+	aa_gpu_image_destroy(s->r->gpu, &s->karis_output);
 	aa_sample_accumulator_destroy(&s->average);
 	aa_scene_target_destroy(s->r, &s->target);
 	free(s);
@@ -60,12 +68,31 @@ static int msaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 				    r->gpu->properties.deviceName, (int)p->v[0]);
 	}
 	s->hardware = path == PATH_HARDWARE || (path == PATH_AUTO && supported);
+	s->tonemapped = p->v[3] != 0;
+	if (s->tonemapped && !s->hardware) {
+		free(s);
+		/* the virtual path sums its sample images with fixed weights in the shared accumulator */
+		return aa_error_set(err, AA_ERR_INVALID, "params.tonemapped_resolve", "msaa:%d takes the virtual "
+				    "path on this device (%s), whose resolve is a linear sum; tonemapped_resolve needs "
+				    "the hardware path (lavapipe: 4 samples)", (int)p->v[0],
+				    r->gpu->properties.deviceName);
+	}
 	int rc;
 	if (s->hardware) {
-		snprintf(info->path_taken, sizeof info->path_taken, "hardware %dx, box resolve", s->samples);
+		snprintf(info->path_taken, sizeof info->path_taken, "hardware %dx, %s", s->samples,
+			 s->tonemapped ? "Karis-weighted (tone-mapped) resolve pass" : "box resolve");
 		struct aa_scene_target_desc d = {.samples = (uint32_t)s->samples,
 						 .alpha_to_coverage = alpha_to_coverage};
 		rc = aa_scene_target_create_desc(r, &s->target, r->width, r->height, &d, "msaa", info, err);
+		if (!rc && s->tonemapped)
+			rc = aa_renderer_image_create(r, &s->karis_output, r->width, r->height, AA_SCENE_COLOR_FORMAT,
+						      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+						      VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "tone-mapped resolve", info,
+						      err) ||
+			     aa_fullscreen_pass_create(r, &s->karis, &(struct aa_fullscreen_desc){
+					.frag = "resolve_karis_ms.frag", .source_count = 1,
+					.sources = {&s->target.color}, .target = &s->karis_output,
+					.push_size = sizeof(int32_t)}, err);
 	} else {
 		snprintf(info->path_taken, sizeof info->path_taken,
 			 "virtual samples: %d rasterisations, shading once per pixel", s->samples);
@@ -90,6 +117,13 @@ static int msaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, stru
 		aa_renderer_draw_scene(s->r, ctx->cmd, &s->target, 0.0f, 0.0f);
 		aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
 		ctx->output = s->target.output;
+		if (s->tonemapped) {
+			span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "resolve-tonemapped");
+			int32_t samples = s->samples;
+			aa_fullscreen_pass_record(s->r, ctx->cmd, &s->karis, &samples, sizeof samples);
+			aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+			ctx->output = &s->karis_output;
+		}
 		return 0;
 	}
 	const float (*pos)[2] = aa_standard_sample_positions(s->samples);
@@ -110,7 +144,7 @@ const struct aa_method aa_method_msaa = {
 	.summary = "multisampling: N visibility samples per pixel, one shade per pixel and triangle",
 	.seed = "seed 000 (2x/4x/8x MSAA)",
 	.params = msaa_params,
-	.param_count = 3,
+	.param_count = 4,
 	.main_param = "samples",
 	.needs = AA_NEED_MSAA,
 	.alpha_rule = AA_ALPHA_PER_PIXEL,

@@ -12,6 +12,9 @@ static const int ssaa_sample_counts[] = {4, 9, 16, 25, 36, 49, 64, 0};
 static const struct aa_param_def ssaa_params[] = {
 	{.name = "samples", .type = AA_PARAM_INT, .def = 16, .min = 4, .max = 64, .allowed = ssaa_sample_counts,
 	 .help = "samples per pixel, a square k*k: the image is rendered at k times the width and height"},
+	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "resolve with Karis' weights 1/(1+luma) (a tone-mapped average) instead of the linear box: "
+		 "no fireflies from sub-pixel HDR highlights, but farther from the linear-box reference"},
 };
 
 struct aa_method_state {
@@ -46,15 +49,16 @@ static int ssaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 				    "device's %u limit; use fewer samples or a smaller size", (int)p->v[0],
 				    r->width * factor, r->height * factor, max_dim);
 	}
-	snprintf(info->path_taken, sizeof info->path_taken, "%dx%d ordered grid, box filter", s->factor,
-		 s->factor);
+	const bool tonemapped = p->v[1] != 0;
+	snprintf(info->path_taken, sizeof info->path_taken, "%dx%d ordered grid, %s", s->factor, s->factor,
+		 tonemapped ? "Karis-weighted (tone-mapped) box filter" : "box filter");
 	if (aa_scene_target_create(r, &s->big, r->width * s->factor, r->height * s->factor, "supersampled", info,
 				   err) ||
 	    aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT,
 				     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
 				     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "resolved colour", info, err) ||
 	    aa_fullscreen_pass_create(r, &s->downsample, &(struct aa_fullscreen_desc){
-			.frag = "resolve_box.frag", .source_count = 1, .sources = {s->big.output},
+			.frag = tonemapped ? "resolve_karis.frag" : "resolve_box.frag", .source_count = 1, .sources = {s->big.output},
 			.target = &s->output, .push_size = sizeof(int32_t)}, err)) {
 		ssaa_destroy(s);
 		return -1;
@@ -83,7 +87,7 @@ const struct aa_method aa_method_ssaa = {
 	.summary = "supersampling: render at k x k the resolution, box-filter down",
 	.seed = "seed 000 (Table 1), seed 001",
 	.params = ssaa_params,
-	.param_count = 1,
+	.param_count = 2,
 	.main_param = "samples",
 	.needs = AA_NEED_SUPERSAMPLED,
 	.alpha_rule = AA_ALPHA_PER_SAMPLE,

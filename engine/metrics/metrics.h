@@ -58,6 +58,8 @@ double aa_ssim_channel(const double *ref, const double *test, int width, int hei
 /* engine/metrics/flicker.c: the mean over pixels and R,G,B of |(m[t] - m[t-1]) - (r[t] - r[t-1])|, the
  * change between frames that the reference does not have (8-bit units); all four images of one size.
  * aa_job_run scores each frame with it, and aalab merge the frames across shard borders. */
+/* engine/metrics/change.c: the mean over pixels and R,G,B of |a - b| (8-bit units). */
+double aa_metrics_mean_change(const struct aa_image_rgba8 *a, const struct aa_image_rgba8 *b);
 double aa_metrics_flicker(const struct aa_image_rgba8 *m, const struct aa_image_rgba8 *m_prev,
 			  const struct aa_image_rgba8 *r, const struct aa_image_rgba8 *r_prev);
 

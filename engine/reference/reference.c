@@ -64,34 +64,38 @@ static void read_average(const struct aa_gpu_buffer *sum_buffer, int count, stru
 		out->pixels[i] = sum[i] * scale;
 }
 
-int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, struct aa_image_rgbaf *full,
-			struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms, struct aa_error *err)
+/* Records renders [from, to) of the reference's pattern into the running sum (cleared first when from is 0),
+ * copying the sum out into half_buf after render mid (when from < mid < to) and into full_buf at the end;
+ * submits and waits. gpu_ms: the renders and their accumulation. */
+static int render_span(struct aa_reference *ref, struct aa_gpu_timer *timer, int from, int mid, int to,
+		       double *gpu_ms, struct aa_error *err)
 {
-	double t0 = aa_now_ms();
-	*gpu_ms = 0;
 	struct aa_renderer *r = ref->r;
-	int mid = ref->samples / 2;
 	VkCommandBuffer cmd;
 	if (aa_gpu_begin(r->gpu, &cmd, err))
 		return -1;
-	/* one submission: the sum of the first N/2 renders is copied out on the way (outside the timed
-	 * spans), then the rest are added to it */
 	aa_gpu_timer_reset(cmd, timer);
 	int span = aa_gpu_timer_begin(cmd, timer, "reference");
-	aa_renderer_record_shadow(r, cmd);
-	aa_sample_accumulator_clear(&ref->sum, cmd);
-	for (int i = 0; i < mid; i++)
-		aa_sample_accumulator_render(&ref->sum, cmd, ref->offsets[i][0], ref->offsets[i][1]);
-	struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
-	aa_gpu_timer_end(cmd, timer, span);
-	if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback_half, err)) {
-		aa_gpu_submit_wait(r->gpu, cmd, NULL);
-		return -1;
+	if (from == 0) {
+		aa_renderer_record_shadow(r, cmd);
+		aa_sample_accumulator_clear(&ref->sum, cmd);
 	}
-	span = aa_gpu_timer_begin(cmd, timer, "reference");
-	for (int i = mid; i < ref->samples; i++)
+	int spans = 1;
+	for (int i = from; i < to; i++) {
 		aa_sample_accumulator_render(&ref->sum, cmd, ref->offsets[i][0], ref->offsets[i][1]);
-	sum = aa_sample_accumulator_sum(&ref->sum, cmd);
+		if (i + 1 != mid || mid >= to)
+			continue;
+		/* the sum of the first mid renders is copied out on the way (outside the timed spans) */
+		struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
+		aa_gpu_timer_end(cmd, timer, span);
+		if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback_half, err)) {
+			aa_gpu_submit_wait(r->gpu, cmd, NULL);
+			return -1;
+		}
+		span = aa_gpu_timer_begin(cmd, timer, "reference");
+		spans++;
+	}
+	struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
 	aa_gpu_timer_end(cmd, timer, span);
 	if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback, err)) {
 		aa_gpu_submit_wait(r->gpu, cmd, NULL);
@@ -102,9 +106,43 @@ int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, st
 	double ms[2] = {0, 0};
 	if (aa_gpu_timer_read(r->gpu, timer, ms, err))
 		return -1;
-	*gpu_ms = ms[0] + ms[1];
-	read_average(&ref->readback_half, mid, half);
-	read_average(&ref->readback, ref->samples, full);
+	*gpu_ms = ms[0] + (spans > 1 ? ms[1] : 0);
+	return 0;
+}
+
+int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, struct aa_image_rgbaf *full,
+			struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms, struct aa_error *err)
+{
+	return aa_reference_render_count(ref, timer, ref->samples, full, half, gpu_ms, cpu_ms, err);
+}
+
+int aa_reference_render_count(struct aa_reference *ref, struct aa_gpu_timer *timer, int count,
+			      struct aa_image_rgbaf *full, struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms,
+			      struct aa_error *err)
+{
+	double t0 = aa_now_ms();
+	*gpu_ms = 0;
+	if (count < 2 || count > ref->samples || count % 2)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "reference: %d samples of %d", count, ref->samples);
+	if (render_span(ref, timer, 0, count / 2, count, gpu_ms, err))
+		return -1;
+	read_average(&ref->readback_half, count / 2, half);
+	read_average(&ref->readback, count, full);
+	*cpu_ms = aa_now_ms() - t0;
+	return 0;
+}
+
+int aa_reference_extend(struct aa_reference *ref, struct aa_gpu_timer *timer, int from, int to,
+			struct aa_image_rgbaf *full, double *gpu_ms, double *cpu_ms, struct aa_error *err)
+{
+	double t0 = aa_now_ms();
+	*gpu_ms = 0;
+	if (from < 2 || to <= from || to > ref->samples)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "reference: samples %d to %d of %d", from, to,
+				    ref->samples);
+	if (render_span(ref, timer, from, -1, to, gpu_ms, err))
+		return -1;
+	read_average(&ref->readback, to, full);
 	*cpu_ms = aa_now_ms() - t0;
 	return 0;
 }

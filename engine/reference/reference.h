@@ -28,5 +28,25 @@ void aa_reference_destroy(struct aa_reference *ref);
  * time. */
 int aa_reference_render(struct aa_reference *ref, struct aa_gpu_timer *timer, struct aa_image_rgbaf *full,
 			struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms, struct aa_error *err);
+/* The same with the first count samples (even, 2..samples): the pattern's points are nested, so the first
+ * count of a longer pattern are the pattern of count. */
+int aa_reference_render_count(struct aa_reference *ref, struct aa_gpu_timer *timer, int count,
+			      struct aa_image_rgbaf *full, struct aa_image_rgbaf *half, double *gpu_ms, double *cpu_ms,
+			      struct aa_error *err);
+/* Adds samples [from, to) to the sum of the first `from` (the last render or extend of this frame) and
+ * reads the average of all `to` into full. */
+int aa_reference_extend(struct aa_reference *ref, struct aa_gpu_timer *timer, int from, int to,
+			struct aa_image_rgbaf *full, double *gpu_ms, double *cpu_ms, struct aa_error *err);
+
+/* reference.samples "auto" (engine/reference/reference_auto.c): per frame, N starts at
+ * AA_REFERENCE_AUTO_START and doubles until the N/2-vs-N convergence PSNR (8-bit sRGB) reaches
+ * target_psnr or N reaches ref->samples (the cap). full/half get the N and N/2 images, full8/half8 their
+ * sRGB encodings, conv their comparison, *samples the N reached. */
+#define AA_REFERENCE_AUTO_START 8
+struct aa_metrics;
+int aa_reference_render_auto(struct aa_reference *ref, struct aa_gpu_timer *timer, double target_psnr,
+			     struct aa_image_rgbaf *full, struct aa_image_rgbaf *half, struct aa_image_rgba8 *full8,
+			     struct aa_image_rgba8 *half8, int *samples, struct aa_metrics *conv, double *gpu_ms,
+			     double *cpu_ms, struct aa_error *err);
 
 #endif

@@ -463,7 +463,19 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 		gpu_median = aa_percentile(gpu, ref->frame_count, 50);
 	}
 	free(gpu);
-	snprintf(v, sizeof v, "%d samples", ref->samples);
+	if (ref->auto_samples) { /* the range of N the frames reached */
+		int lo = 0, hi = 0;
+		for (int i = 0; ref->frames && i < ref->frame_count; i++) {
+			lo = i == 0 || ref->frames[i].samples < lo ? ref->frames[i].samples : lo;
+			hi = ref->frames[i].samples > hi ? ref->frames[i].samples : hi;
+		}
+		if (lo == hi)
+			snprintf(v, sizeof v, "auto: %d samples", hi);
+		else
+			snprintf(v, sizeof v, "auto: %d-%d samples", lo, hi);
+	} else {
+		snprintf(v, sizeof v, "%d samples", ref->samples);
+	}
 	int n = snprintf(d, sizeof d, "%s \xc2\xb7 convergence PSNR ", *ref->pattern ? ref->pattern : "reference");
 	if (identical)
 		n += snprintf(d + n, sizeof d - (size_t)n, "identical");

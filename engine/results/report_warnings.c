@@ -69,10 +69,17 @@ void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const stru
 	const double conv = convergence_psnr(&r->reference);
 	if (isfinite(conv) && conv < CONVERGED_DB) {
 		item_begin(o, &count);
-		fprintf(o, "<b>The reference is not converged</b>: its %d-sample image differs from its %d-sample image "
-			   "by %.1f dB PSNR (under %.0f dB). Method PSNRs near or above %.1f dB measure the reference's "
-			   "noise, not the method; raise <code>reference.samples</code>.</li>\n",
-			r->reference.samples / 2, r->reference.samples, conv, CONVERGED_DB, conv);
+		if (r->reference.auto_samples)
+			fprintf(o, "<b>The reference is not converged</b>: with <code>reference.samples</code> \"auto\" "
+				   "(cap %d) its N/2-sample images differ from its N-sample images by %.1f dB PSNR "
+				   "(under %.0f dB). Method PSNRs near or above %.1f dB measure the reference's noise, "
+				   "not the method; raise <code>reference.max_samples</code>.</li>\n",
+				r->reference.samples, conv, CONVERGED_DB, conv);
+		else
+			fprintf(o, "<b>The reference is not converged</b>: its %d-sample image differs from its "
+				   "%d-sample image by %.1f dB PSNR (under %.0f dB). Method PSNRs near or above %.1f dB "
+				   "measure the reference's noise, not the method; raise <code>reference.samples</code>."
+				   "</li>\n", r->reference.samples / 2, r->reference.samples, conv, CONVERGED_DB, conv);
 		for (int i = 0; i < r->method_count; i++)
 			if (isfinite(sum[i].psnr_mean) && sum[i].psnr_mean >= conv - 3.0) {
 				item_begin(o, &count);
@@ -80,6 +87,19 @@ void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const stru
 				fprintf(o, " scores %.1f dB, within 3 dB of the reference's own convergence (%.1f dB): its "
 					   "PSNR is not meaningful here.</li>\n", sum[i].psnr_mean, conv);
 			}
+	}
+	/* reference.samples "auto": frames that stopped at the cap short of the target */
+	int capped = 0;
+	for (int f = 0; r->reference.auto_samples && r->reference.frames && f < r->reference.frame_count; f++) {
+		const struct aa_reference_frame *rf = &r->reference.frames[f];
+		capped += !rf->reused && !rf->convergence_identical && rf->samples >= r->reference.samples &&
+			  !(rf->convergence_psnr >= r->reference.target_psnr);
+	}
+	if (capped) {
+		item_begin(o, &count);
+		fprintf(o, "<b>Reference capped</b>: %d frame%s reached <code>reference.max_samples</code> (%d) before "
+			   "the target of %.1f dB (results.json: reference.frames[].convergence_psnr).</li>\n", capped,
+			capped == 1 ? "" : "s", r->reference.samples, r->reference.target_psnr);
 	}
 	/* Neighbours in the ranking by median GPU time whose p10-p90 ranges overlap cannot be ranked. */
 	int order[AA_MAX_METHODS], timed = 0;

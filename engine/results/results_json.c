@@ -215,6 +215,9 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "fourier", fourier_json(b, f->metrics.fourier));
 	put(b, obj, "nonfinite", json_integer(f->nonfinite));
 	put(b, obj, "over_threshold", json_integer(f->over_threshold));
+	put(b, obj, "out_of_range", json_integer(f->out_of_range));
+	put(b, obj, "change", num(f->change));
+	put(b, obj, "reference_change", num(f->ref_change));
 	put(b, obj, "image", image_path(r, "frames", m->label, ordinal));
 	put(b, obj, "diff", image_path(r, "diff", m->label, ordinal));
 	put(b, obj, "flip_map", image_path(r, "flip", m->label, ordinal));
@@ -397,11 +400,16 @@ static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 		put(b, fo, "convergence_mse", num(mse));
 		put(b, fo, "nonfinite", json_integer(f->nonfinite));
 		put(b, fo, "reused", json_boolean(f->reused));
+		put(b, fo, "samples", json_integer(f->samples));
 		put(b, fo, "image", image_path(r, "frames", "reference", i));
 		push(b, per_frame, fo);
 	}
 	const double mse_mean = mse_n ? mse_sum / mse_n : NAN;
 	put(b, obj, "samples", json_integer(ref->samples));
+	/* "auto": samples is the cap and each frame says the N it reached */
+	put(b, obj, "mode", str(ref->auto_samples ? "auto" : "fixed"));
+	if (ref->auto_samples)
+		put(b, obj, "target_psnr", num(ref->target_psnr));
 	put(b, obj, "alpha_rule", str(aa_alpha_rule_name(AA_ALPHA_PER_SAMPLE))); /* each jittered render tests its own */
 	put(b, obj, "pattern", str(ref->pattern));
 	put(b, obj, "memory_bytes", u64(ref->memory_bytes));

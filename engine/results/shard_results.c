@@ -166,6 +166,9 @@ static int read_frames(const json_t *jm, const char *path, int first_frame, int 
 		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
 		f->over_threshold = (long)json_integer_value(json_object_get(item, "over_threshold"));
 		f->flicker = jnum(item, "flicker");
+		f->out_of_range = (long)json_integer_value(json_object_get(item, "out_of_range"));
+		f->change = jnum(item, "change");
+		f->ref_change = jnum(item, "reference_change");
 	}
 	m->frame_count = frames;
 	snprintf(where, sizeof where, "%s.timed_renders", path);
@@ -243,6 +246,10 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 
 	const json_t *ref = json_object_get(doc, "reference");
 	out->reference.samples = (int)json_integer_value(json_object_get(ref, "samples"));
+	out->reference.auto_samples = !strcmp(json_string_value(json_object_get(ref, "mode")) ?
+					      json_string_value(json_object_get(ref, "mode")) : "", "auto");
+	out->reference.target_psnr = out->reference.auto_samples ?
+					     json_number_value(json_object_get(ref, "target_psnr")) : NAN;
 	jstr(ref, "pattern", out->reference.pattern, sizeof out->reference.pattern);
 	out->reference.memory_bytes = (uint64_t)json_integer_value(json_object_get(ref, "memory_bytes"));
 	if (need_array(ref, "per_frame", "reference.per_frame", &v, err))
@@ -263,6 +270,7 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 		f->convergence_mse = jnum(item, "convergence_mse");
 		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
 		f->reused = json_is_true(json_object_get(item, "reused"));
+		f->samples = (int)json_integer_value(json_object_get(item, "samples"));
 	}
 	out->reference.frame_count = spec->frames;
 
@@ -511,6 +519,8 @@ static int merge_frames(struct aa_shard_merge *out, const struct shard_doc *docs
 			w->warnings_dropped = part->warnings_dropped;
 			memcpy(w->warnings, part->warnings, sizeof w->warnings);
 			w->reference.samples = part->reference.samples;
+			w->reference.auto_samples = part->reference.auto_samples;
+			w->reference.target_psnr = part->reference.target_psnr;
 			memcpy(w->reference.pattern, part->reference.pattern, sizeof w->reference.pattern);
 			w->reference.memory_bytes = part->reference.memory_bytes;
 			for (int i = 0; i < w->method_count; i++) {

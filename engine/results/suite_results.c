@@ -9,6 +9,7 @@
 
 #include "farm.h"
 #include "results.h"
+#include "verdicts.h"
 
 static json_t *num(double v)
 {
@@ -91,6 +92,8 @@ json_t *aa_suite_results_to_json(const struct aa_suite_result *r)
 		json_array_append_new(cases, c);
 	}
 	json_object_set_new(root, "cases", cases);
+	if (r->spec.verdicts)
+		json_object_set_new(root, "verdicts", aa_verdicts_json(r, NULL));
 	return root;
 }
 

@@ -1,38 +1,27 @@
-/* Mesh files (glTF 2.0, OBJ, anything assimp reads) through assimp's C API: checked raw (finite positions
- * within 1e7, indices that name vertices) before assimp's post-processing can hide a fault, then split
- * into one mesh per material with node transforms baked in, except where a skin or an animation moves
- * the vertices: those keep their bind-space positions and a rig (scene_rig.c) poses them per frame.
- * Materials and their textures come from the file unless the object overrides them. */
-#include "mesh_file.h"
+/* Mesh files (glTF 2.0, OBJ, PLY, STL, OFF) through assimp's C API: read first by aalab itself
+ * (gltf_check.c, mesh_text_check.c), checked raw again (finite positions within 1e7, indices that name
+ * vertices) before assimp's post-processing can hide a fault, then split into one mesh per material with
+ * node transforms baked in, except where a skin or an animation moves the vertices: those keep their
+ * bind-space positions and a rig (scene_rig.c) poses them per frame. Materials and their textures come
+ * from the file unless the object overrides them (mesh_file_materials.c). */
+#include "mesh_file_loader.h"
 
-#include <assimp/GltfMaterial.h>
 #include <assimp/cimport.h>
-#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <ctype.h>
-#include <errno.h>
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 
-#include "../image/image.h"
 #include "mesh_procedural.h"
+#include "mesh_text_check.h"
 #include "texture.h"
 
 #define POSITION_MAX 1e7 /* as every number in a scene file (SJ_MAX_ABS) */
 
 /* ---------------------------------------------------------------- small helpers */
-
-static bool ends_with(const char *s, const char *suffix)
-{
-	size_t a = strlen(s), b = strlen(suffix);
-	return a >= b && strcasecmp(s + a - b, suffix) == 0;
-}
 
 static mat4 from_ai(const struct aiMatrix4x4 *a) /* assimp is row-major, mat4 column-major */
 {
@@ -54,45 +43,9 @@ static vec3 normalized_or(vec3 v, vec3 fallback)
 	return len > 1e-20f && isfinite(len) ? v3_scale(v, 1.0f / len) : fallback;
 }
 
-/* ---------------------------------------------------------------- what the loader builds */
+/* ---------------------------------------------------------------- errors and the raw import */
 
-struct node_info {
-	const struct aiNode *node;
-	int parent;
-	mat4 world;     /* rest pose */
-	bool moves;     /* an animation channel targets it or an ancestor */
-};
-
-struct part {
-	unsigned material;  /* assimp material index */
-	uint32_t vertex_count, index_count;
-	bool rigged;        /* some vertices are skinned or animated */
-	bool colors;        /* some source mesh has COLOR_0 */
-	int mesh;           /* its index in scene->meshes (which grows: no pointers into it) */
-};
-
-struct loader {
-	struct sj *s;
-	struct aa_scene *scene;
-	const char *path, *shown, *base_dir;
-	const struct aa_mesh_file_options *options;
-	const struct aiScene *ai;
-	bool gltf;
-	struct aa_gltf_info gltf_info;
-	struct node_info *nodes;
-	int node_count;
-	struct part *parts;
-	int part_count;
-	/* the rig being built: joints as (node, inverse bind) pairs, deduplicated */
-	int joint_count, joint_cap;
-	int *joint_node;
-	mat4 *joint_ibm;
-	size_t texture_bytes; /* the scene's textures so far */
-};
-
-#define FAIL(L, code, ...) fail_file((L), (code), __VA_ARGS__)
-__attribute__((format(printf, 3, 4))) static int fail_file(struct loader *L, enum aa_error_code code, const char *fmt,
-							   ...)
+int aa_mesh_file_fail(struct loader *L, enum aa_error_code code, const char *fmt, ...)
 {
 	char msg[600];
 	va_list ap;
@@ -102,82 +55,13 @@ __attribute__((format(printf, 3, 4))) static int fail_file(struct loader *L, enu
 	return sj_fail(L->s, code, "mesh file '%s': %s", L->shown, msg);
 }
 
-/* ---------------------------------------------------------------- before assimp */
-
-/* OBJ: assimp goes on silently without a missing .mtl; aalab names it (or warns, when asked). */
-/* A PLY header is ASCII text up to end_header. assimp 5.2's PLY reader loops without end on a header
- * with other bytes in a property line (fuzz_mesh), which would hang whoever loads the scene, so such a
- * header is refused before assimp reads the file. */
-static int check_ply_header(struct loader *L)
-{
-	FILE *f = fopen(L->path, "rb");
-	if (!f)
-		return FAIL(L, AA_ERR_IO, "cannot open: %s", strerror(errno));
-	char line[4096];
-	int rc = 0;
-	for (int n = 1; fgets(line, sizeof line, f); n++) {
-		for (const unsigned char *c = (const unsigned char *)line; *c; c++)
-			if (!(isprint(*c) || *c == '\n' || *c == '\r' || *c == '\t')) {
-				rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d holds a byte that is not ASCII text "
-					  "(0x%02x)", n, *c);
-				break;
-			}
-		if (rc || strncmp(line, "end_header", 10) == 0)
-			break;
-		/* and every line one of the header's keywords (a misspelt one made assimp loop too) */
-		static const char *const keywords[] = {"ply", "format ", "comment", "obj_info", "element ", "property "};
-		bool known = false;
-		for (size_t k = 0; k < sizeof keywords / sizeof keywords[0]; k++)
-			known |= strncmp(line, keywords[k], strlen(keywords[k])) == 0;
-		if (!known) {
-			rc = FAIL(L, AA_ERR_INVALID, "PLY header line %d is not one of ply, format, comment, obj_info, "
-				  "element, property, end_header", n);
-			break;
-		}
-	}
-	fclose(f);
-	return rc;
-}
-
-static int check_obj_libraries(struct loader *L)
-{
-	FILE *f = fopen(L->path, "r");
-	char line[1024];
-	int rc = 0, line_number = 0;
-	if (!f)
-		return FAIL(L, AA_ERR_IO, "cannot open: %s", strerror(errno));
-	while (rc == 0 && fgets(line, sizeof line, f)) {
-		line_number++;
-		char *p = line;
-		while (*p == ' ' || *p == '\t')
-			p++;
-		if (strncmp(p, "mtllib", 6) != 0 || !isspace((unsigned char)p[6]))
-			continue;
-		for (char *name = strtok(p + 6, " \t\r\n"); name && rc == 0; name = strtok(NULL, " \t\r\n")) {
-			char full[PATH_MAX];
-			struct aa_error e = {0};
-			if (aa_resolve_beside(L->path, L->base_dir, name, full, sizeof full, &e) == 0)
-				continue;
-			if (L->options->missing_warn && e.code == AA_ERR_NOT_FOUND)
-				aa_scene_warn(L->scene, "%s: line %d: material library '%s' not found: drawn without its "
-					      "materials", L->shown, line_number, name);
-			else
-				rc = FAIL(L, e.code, "line %d: material library (mtllib) %s", line_number, e.message);
-		}
-	}
-	fclose(f);
-	return rc;
-}
-
 /* assimp's messages, said as what is wrong with which file. */
 static int import_error(struct loader *L)
 {
 	const char *msg = aiGetErrorString();
 	if (strstr(msg, "No suitable reader found"))
-		return FAIL(L, AA_ERR_INVALID, "is not in a format aalab reads (glTF 2.0 .gltf or .glb, OBJ, and the "
-			    "other formats assimp knows: PLY, STL, OFF, ...)");
-	if (strstr(msg, "vertex index out of range") || strstr(msg, "index out of range"))
-		return FAIL(L, AA_ERR_INVALID, "a face names a vertex that does not exist (assimp: %s)", msg);
+		return FAIL(L, AA_ERR_INVALID, "is not in a format aalab reads (glTF 2.0 .gltf or .glb, OBJ .obj, "
+			    "PLY .ply, STL .stl, OFF .off)");
 	char copy[512];
 	snprintf(copy, sizeof copy, "%s", msg);
 	char *at = strstr(copy, L->path); /* assimp quotes the absolute path; the scene's name is enough */
@@ -191,7 +75,7 @@ static int import_error(struct loader *L)
 static int check_raw(struct loader *L)
 {
 	for (unsigned i = 0; i < L->ai->mNumMeshes; i++) {
-		struct aiMesh *m = L->ai->mMeshes[i];
+		const struct aiMesh *m = L->ai->mMeshes[i];
 		if (m->mNumAnimMeshes)
 			return FAIL(L, AA_ERR_INVALID, "mesh '%s' has morph targets, which aalab does not support",
 				    m->mName.data);
@@ -204,24 +88,11 @@ static int check_raw(struct loader *L)
 				return FAIL(L, AA_ERR_INVALID, "mesh '%s' vertex %u is at (%g, %g, %g): positions must be within "
 					    "%g of the origin", m->mName.data, v, p->x, p->y, p->z, POSITION_MAX);
 		}
-		/* An importer can leave the mesh's primitive types at odds with its faces (fuzz_mesh found an OFF
-		 * file that does), and assimp's triangulation then aborts the process on an assertion: the types
-		 * are set again from the faces themselves. */
-		unsigned types = 0;
-		for (unsigned f = 0; f < m->mNumFaces; f++) {
-			unsigned n = m->mFaces[f].mNumIndices;
-			if (n == 0)
-				return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u has no vertices", m->mName.data, f);
-			types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
-					 : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
-			for (unsigned k = 0; k < n; k++)
+		for (unsigned f = 0; f < m->mNumFaces; f++)
+			for (unsigned k = 0; k < m->mFaces[f].mNumIndices; k++)
 				if (m->mFaces[f].mIndices[k] >= m->mNumVertices)
 					return FAIL(L, AA_ERR_INVALID, "mesh '%s' face %u names vertex %u, but the mesh has %u "
 						    "vertices", m->mName.data, f, m->mFaces[f].mIndices[k], m->mNumVertices);
-		}
-		if (types) /* a mesh without faces keeps the importer's types: 0 makes post-processing fail, and
-			    * assimp 5.2 then crashes freeing the scene (an OBJ of vertices alone, fuzz_mesh) */
-			m->mPrimitiveTypes = types;
 	}
 	return 0;
 }
@@ -610,288 +481,6 @@ static int build_rig(struct loader *L, int *rig_index)
 	return 0;
 }
 
-/* ---------------------------------------------------------------- materials and textures */
-
-static int add_texture_slot(struct loader *L)
-{
-	struct aa_scene *sc = L->scene;
-	if (sc->texture_count >= AA_SCENE_MAX_ALL_TEXTURES)
-		return FAIL(L, AA_ERR_LIMIT, "the scene has more than %d textures with those of its mesh files",
-			    AA_SCENE_MAX_ALL_TEXTURES);
-	struct aa_texture *grown = realloc(sc->textures, (size_t)(sc->texture_count + 1) * sizeof *grown);
-	if (!grown)
-		return FAIL(L, AA_ERR_INTERNAL, "out of memory");
-	sc->textures = grown;
-	memset(&sc->textures[sc->texture_count], 0, sizeof *sc->textures);
-	return sc->texture_count;
-}
-
-/* A texture a material names: embedded ("*N") or a file beside the mesh file; loaded once per file and
- * kind (colour or data). -1 with *missing set when the file is absent and the object asked for warnings. */
-static int load_texture(struct loader *L, const char *ref, bool linear, const char *what, bool *missing)
-{
-	struct aa_scene *sc = L->scene;
-	char source[sizeof sc->textures[0].source];
-	snprintf(source, sizeof source, "%.200s:%.280s%s", L->shown, ref, linear ? " (data)" : "");
-	for (int i = 0; i < sc->texture_count; i++)
-		if (strcmp(sc->textures[i].source, source) == 0)
-			return i;
-	struct aa_image_rgba8 img = {0};
-	struct aa_error e = {0};
-	int rc;
-	if (ref[0] == '*') {
-		char *end;
-		long index = strtol(ref + 1, &end, 10);
-		if (*end || index < 0 || index >= (long)L->ai->mNumTextures)
-			return FAIL(L, AA_ERR_INVALID, "%s names embedded texture %s, which the file does not have", what, ref);
-		const struct aiTexture *t = L->ai->mTextures[index];
-		if (t->mHeight == 0) { /* compressed: PNG, JPEG, ... */
-			rc = aa_image_decode_rgba8(t->pcData, t->mWidth, source, t->achFormatHint, &img, &e);
-		} else if ((rc = aa_image_rgba8_alloc(&img, (int)t->mWidth, (int)t->mHeight)) == 0) {
-			for (size_t p = 0; p < (size_t)t->mWidth * t->mHeight; p++) {
-				img.pixels[p * 4 + 0] = t->pcData[p].r;
-				img.pixels[p * 4 + 1] = t->pcData[p].g;
-				img.pixels[p * 4 + 2] = t->pcData[p].b;
-				img.pixels[p * 4 + 3] = t->pcData[p].a;
-			}
-		} else {
-			aa_error_set(&e, AA_ERR_INTERNAL, "", "out of memory");
-		}
-	} else {
-		char full[PATH_MAX];
-		struct stat st;
-		rc = aa_resolve_beside(L->path, L->base_dir, ref, full, sizeof full, &e);
-		if (rc && e.code == AA_ERR_NOT_FOUND && L->options->missing_warn) {
-			aa_scene_warn(sc, "%s: %s: texture '%s' not found: drawn without it", L->shown, what, ref);
-			*missing = true;
-			return -1;
-		}
-		if (rc)
-			return FAIL(L, e.code, "%s: texture %s", what, e.message);
-		if (stat(full, &st) != 0 || (uint64_t)st.st_size > AA_MESH_FILE_MAX_BYTES)
-			return FAIL(L, AA_ERR_LIMIT, "%s: texture '%s' is over %u bytes", what, ref,
-				    (unsigned)AA_MESH_FILE_MAX_BYTES);
-		rc = aa_image_read_rgba8(full, &img, &e);
-	}
-	if (rc)
-		return FAIL(L, e.code ? e.code : AA_ERR_INVALID, "%s: texture '%s': %s", what, ref, e.message);
-	if (img.width > AA_TEXTURE_MAX_SIZE || img.height > AA_TEXTURE_MAX_SIZE ||
-	    L->texture_bytes + aa_texture_bytes(img.width, img.height) > AA_SCENE_MAX_TEXTURE_BYTES) {
-		aa_image_rgba8_free(&img);
-		return FAIL(L, AA_ERR_LIMIT, "%s: texture '%s' is %dx%d: textures may be at most %dx%d and %u bytes in "
-			    "all", what, ref, img.width, img.height, AA_TEXTURE_MAX_SIZE, AA_TEXTURE_MAX_SIZE,
-			    (unsigned)AA_SCENE_MAX_TEXTURE_BYTES);
-	}
-	int slot = add_texture_slot(L);
-	if (slot < 0) {
-		aa_image_rgba8_free(&img);
-		return -1;
-	}
-	struct aa_texture *tex = &sc->textures[slot];
-	rc = aa_texture_from_rgba8_data(tex, img.pixels, img.width, img.height, linear, &e);
-	aa_image_rgba8_free(&img);
-	if (rc)
-		return FAIL(L, e.code, "%s: texture '%s': %s", what, ref, e.message);
-	sc->texture_count++;
-	L->texture_bytes += aa_texture_bytes(tex->width, tex->height);
-	snprintf(tex->source, sizeof tex->source, "%s", source);
-	snprintf(tex->name, sizeof tex->name, "%.40s#%d", L->shown, slot);
-	return slot;
-}
-
-static bool material_float(const struct aiMaterial *mat, const char *key, unsigned type, unsigned index, float *out)
-{
-	ai_real v;
-	unsigned one = 1;
-	if (aiGetMaterialFloatArray(mat, key, type, index, &v, &one) != AI_SUCCESS || !isfinite(v))
-		return false;
-	*out = (float)v;
-	return true;
-}
-
-static bool material_color(const struct aiMaterial *mat, const char *key, unsigned type, unsigned index, float out[4])
-{
-	struct aiColor4D c;
-	if (aiGetMaterialColor(mat, key, type, index, &c) != AI_SUCCESS)
-		return false;
-	float v[4] = {c.r, c.g, c.b, c.a};
-	for (int k = 0; k < 4; k++)
-		out[k] = isfinite(v[k]) ? v[k] : -1.0f; /* out of range: clamped and warned about by clamp_values */
-	return true;
-}
-
-/* Values outside what the format allows are clamped, and the scene says so once per field. */
-static void clamp_values(struct loader *L, const char *what, const char *field, float *v, int n, float lo, float hi)
-{
-	bool clamped = false;
-	for (int k = 0; k < n; k++) {
-		float c = isfinite(v[k]) ? fminf(fmaxf(v[k], lo), hi) : lo;
-		clamped |= c != v[k];
-		v[k] = c;
-	}
-	if (clamped)
-		aa_scene_warn(L->scene, "%s: %s: %s outside [%g, %g] (or not a number): clamped", L->shown, what, field, lo, hi);
-}
-
-/* The texture of a map, if the material has one: loads it into maps[map]. */
-static int material_map(struct loader *L, const struct aiMaterial *mat, enum aiTextureType type, int map,
-			bool linear, const char *what, struct aa_material *m)
-{
-	struct aiString path;
-	if (aiGetMaterialTextureCount(mat, type) == 0 ||
-	    aiGetMaterialTexture(mat, type, 0, &path, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS ||
-	    m->maps[map] >= 0)
-		return 0;
-	bool missing = false;
-	int t = load_texture(L, path.data, linear, what, &missing);
-	if (t < 0 && !missing)
-		return -1;
-	m->maps[map] = t;
-	return 0;
-}
-
-/* The 2x3 matrix of KHR_texture_transform: T(offset) R(rotation) S(scale) on (u, v, 1), glTF's order and
- * direction (rotation counter-clockwise in uv, about the uv origin). */
-static void uv_matrix(const struct aa_gltf_map *g, float m[6])
-{
-	float c = cosf(g->rotation), s = sinf(g->rotation);
-	m[0] = c * g->scale[0], m[1] = s * g->scale[1], m[2] = g->offset[0];
-	m[3] = -s * g->scale[0], m[4] = c * g->scale[1], m[5] = g->offset[1];
-}
-
-/* A file material as an aalab material (docs/scene-format.md, "Materials from mesh files"). */
-static int convert_material(struct loader *L, unsigned index, struct aa_material *m)
-{
-	const struct aiMaterial *mat = L->ai->mMaterials[index];
-	struct aiString name = {0};
-	aiGetMaterialString(mat, AI_MATKEY_NAME, &name);
-	char what[160];
-	snprintf(what, sizeof what, "materials[%u] '%.60s'", index, name.data);
-	aa_material_defaults(m);
-	m->scale[0] = m->scale[1] = 1.0f; /* textures map once over uv 0..1 (the transform, if any, does the rest) */
-	snprintf(m->name, sizeof m->name, "%.40s/%.20s", L->shown, name.length ? name.data : "material");
-	snprintf(m->source, sizeof m->source, "%.60s: %.90s", L->shown, what);
-	float color[4] = {1, 1, 1, 1};
-	if (!material_color(mat, AI_MATKEY_BASE_COLOR, color))
-		material_color(mat, AI_MATKEY_COLOR_DIFFUSE, color);
-	clamp_values(L, what, L->gltf ? "baseColorFactor" : "diffuse colour (Kd)", color, 4, 0.0f, 1.0f);
-	memcpy(m->base_color, color, sizeof color);
-	int shading = 0;
-	unsigned one = 1;
-	bool unlit = aiGetMaterialIntegerArray(mat, AI_MATKEY_SHADING_MODEL, &shading, &one) == AI_SUCCESS &&
-		     shading == aiShadingMode_Unlit;
-	if (L->gltf) {
-		const struct aa_gltf_material *g = index < (unsigned)L->gltf_info.material_count ?
-							   &L->gltf_info.materials[index] : NULL;
-		m->model = AA_SHADING_METAL_ROUGH;
-		m->metallic = 1.0f, m->roughness = 1.0f; /* glTF's defaults */
-		material_float(mat, AI_MATKEY_METALLIC_FACTOR, &m->metallic);
-		material_float(mat, AI_MATKEY_ROUGHNESS_FACTOR, &m->roughness);
-		clamp_values(L, what, "metallicFactor", &m->metallic, 1, 0.0f, 1.0f);
-		clamp_values(L, what, "roughnessFactor", &m->roughness, 1, 0.0f, 1.0f);
-		float emissive[4] = {0, 0, 0, 1};
-		material_color(mat, AI_MATKEY_COLOR_EMISSIVE, emissive);
-		clamp_values(L, what, "emissiveFactor", emissive, 3, 0.0f, 1.0f);
-		for (int k = 0; k < 3; k++)
-			m->emissive[k] = emissive[k] * (g ? g->emissive_strength : 1.0f);
-		struct aiString mode = {0};
-		aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode);
-		if (strcmp(mode.data, "MASK") == 0) {
-			m->alpha_cutout = true;
-			m->alpha_cutoff = 0.5f;
-			material_float(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &m->alpha_cutoff);
-			clamp_values(L, what, "alphaCutoff", &m->alpha_cutoff, 1, 0.0f, 1.0f);
-			/* the cut-out path discards alpha < cutoff: at 0 nothing would go, so keep a hair above */
-			m->alpha_cutoff = fmaxf(m->alpha_cutoff, 1e-4f);
-		} else if (strcmp(mode.data, "BLEND") == 0) {
-			m->blend = true;
-		} else {
-			m->base_color[3] = 1.0f; /* OPAQUE: alpha is ignored */
-		}
-		int two_sided = 0;
-		one = 1;
-		aiGetMaterialIntegerArray(mat, AI_MATKEY_TWOSIDED, &two_sided, &one);
-		m->single_sided = !two_sided;
-		material_float(mat, AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), &m->normal_scale);
-		material_float(mat, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), &m->occlusion_strength);
-		if (material_map(L, mat, aiTextureType_BASE_COLOR, AA_MAP_BASE, false, what, m) ||
-		    material_map(L, mat, aiTextureType_DIFFUSE, AA_MAP_BASE, false, what, m) ||
-		    material_map(L, mat, aiTextureType_EMISSIVE, AA_MAP_EMISSIVE, false, what, m) ||
-		    material_map(L, mat, aiTextureType_NORMALS, AA_MAP_NORMAL, true, what, m) ||
-		    material_map(L, mat, aiTextureType_UNKNOWN, AA_MAP_METAL_ROUGH, true, what, m) ||
-		    material_map(L, mat, aiTextureType_METALNESS, AA_MAP_METAL_ROUGH, true, what, m) ||
-		    material_map(L, mat, aiTextureType_LIGHTMAP, AA_MAP_OCCLUSION, true, what, m) ||
-		    material_map(L, mat, aiTextureType_AMBIENT_OCCLUSION, AA_MAP_OCCLUSION, true, what, m))
-			return -1;
-		for (int k = 0; g && k < AA_MAP_COUNT; k++)
-			if (g->maps[k].transformed) {
-				uv_matrix(&g->maps[k], m->uv_transform[k]);
-				m->uv_transformed = true;
-			}
-	} else {
-		/* OBJ and the rest: the scene's own model, Lambert + Blinn-Phong from Kd, Ks, Ns, d */
-		float ks[4] = {0, 0, 0, 1}, shininess = 0, opacity = 1, emissive[4] = {0, 0, 0, 1};
-		material_color(mat, AI_MATKEY_COLOR_SPECULAR, ks);
-		material_float(mat, AI_MATKEY_SHININESS, &shininess);
-		material_float(mat, AI_MATKEY_OPACITY, &opacity);
-		material_color(mat, AI_MATKEY_COLOR_EMISSIVE, emissive);
-		clamp_values(L, what, "specular colour (Ks)", ks, 3, 0.0f, 1.0f);
-		clamp_values(L, what, "emissive colour (Ke)", emissive, 3, 0.0f, 1.0f);
-		clamp_values(L, what, "opacity (d)", &opacity, 1, 0.0f, 1.0f);
-		memcpy(m->emissive, emissive, sizeof m->emissive);
-		m->specular = fmaxf(ks[0], fmaxf(ks[1], ks[2]));
-		/* the exponent maps onto roughness the way scene materials do (512 at 0, 4 at 1) */
-		m->roughness = shininess > 0 ? fminf(fmaxf((512.0f - shininess) / 508.0f, 0.01f), 1.0f) : 0.5f;
-		m->base_color[3] = fminf(fmaxf(opacity, 0.0f), 1.0f);
-		m->blend = m->base_color[3] < 1.0f;
-		if (material_map(L, mat, aiTextureType_DIFFUSE, AA_MAP_BASE, false, what, m) ||
-		    material_map(L, mat, aiTextureType_EMISSIVE, AA_MAP_EMISSIVE, false, what, m) ||
-		    material_map(L, mat, aiTextureType_NORMALS, AA_MAP_NORMAL, true, what, m))
-			return -1;
-		if (aiGetMaterialTextureCount(mat, aiTextureType_HEIGHT) || aiGetMaterialTextureCount(mat, aiTextureType_OPACITY))
-			aa_scene_warn(L->scene, "%s: %s: bump (height) and opacity maps are not drawn", L->shown, what);
-	}
-	m->unlit = unlit;
-	if (m->maps[AA_MAP_BASE] >= 0) {
-		m->texture_index = m->maps[AA_MAP_BASE];
-		m->pattern = AA_PATTERN_TEXTURE;
-	}
-	if (m->maps[AA_MAP_EMISSIVE] >= 0 && m->emissive[0] == 0 && m->emissive[1] == 0 && m->emissive[2] == 0)
-		m->maps[AA_MAP_EMISSIVE] = -1; /* times a zero factor: nothing to sample */
-	if (m->unlit && (m->maps[AA_MAP_NORMAL] >= 0 || m->maps[AA_MAP_EMISSIVE] >= 0))
-		m->maps[AA_MAP_NORMAL] = m->maps[AA_MAP_EMISSIVE] = -1;
-	return 0;
-}
-
-static int add_material(struct loader *L, unsigned index, int *out)
-{
-	struct aa_scene *sc = L->scene;
-	if (sc->material_count >= AA_SCENE_MAX_ALL_MATERIALS)
-		return FAIL(L, AA_ERR_LIMIT, "the scene has more than %d materials with those of its mesh files",
-			    AA_SCENE_MAX_ALL_MATERIALS);
-	struct aa_material *grown = realloc(sc->materials, (size_t)(sc->material_count + 1) * sizeof *grown);
-	if (!grown)
-		return FAIL(L, AA_ERR_INTERNAL, "out of memory");
-	sc->materials = grown;
-	struct aa_material m;
-	if (convert_material(L, index, &m))
-		return -1;
-	sc->materials[sc->material_count] = m;
-	*out = sc->material_count++;
-	return 0;
-}
-
-/* Whether a file material is the importer's stand-in for "no material" (glTF primitives without one, OBJ
- * without a .mtl): those parts take the scene's default material. */
-static bool is_default_material(struct loader *L, unsigned index)
-{
-	if (L->gltf)
-		return index >= (unsigned)L->gltf_info.material_count;
-	struct aiString name = {0};
-	aiGetMaterialString(L->ai->mMaterials[index], AI_MATKEY_NAME, &name);
-	return strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0;
-}
-
 /* ---------------------------------------------------------------- the whole file */
 
 static int add_mesh_slot(struct loader *L)
@@ -966,10 +555,8 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 	int first_part = -1, rc = 0;
 	if (L.gltf)
 		rc = aa_gltf_check(s, scene, path, shown, base_dir, &L.gltf_info);
-	else if (ends_with(path, ".obj"))
-		rc = check_obj_libraries(&L);
-	else if (ends_with(path, ".ply"))
-		rc = check_ply_header(&L);
+	else /* OBJ, OFF, PLY, STL: read by aalab first (mesh_text_check.c); any other format is refused */
+		rc = aa_mesh_text_check_file(s, scene, path, shown, base_dir, options->missing_warn);
 	if (rc == 0 && !(L.ai = aiImportFile(path, 0)))
 		rc = import_error(&L);
 	if (rc == 0)
@@ -997,8 +584,8 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 		struct aa_mesh *m = &scene->meshes[p->mesh];
 		m->rig = p->rigged ? rig : -1;
 		int material = -1;
-		if (options->materials && !is_default_material(&L, p->material)) {
-			rc = add_material(&L, p->material, &material);
+		if (options->materials && !aa_mesh_file_is_default_material(&L, p->material)) {
+			rc = aa_mesh_file_add_material(&L, p->material, &material);
 			if (rc == 0) {
 				struct aa_material *mat = &scene->materials[material];
 				mat->vertex_color = p->colors;

@@ -27,6 +27,14 @@ static const struct { const char *scene; bool shadow, cutout, animated; } scenes
 	{"moving-sphere", true, false, true},
 	{"spinning-wheel", false, false, true},
 	{"thin-wires", false, false, false},
+	/* issue 17's hard cases (docs/hard-cases.md) */
+	{"specular-aliasing", false, false, false},
+	{"subpixel-specks", false, false, false},
+	{"moire", false, false, false},
+	{"far-from-origin", false, false, true},
+	{"far-from-origin-control", false, false, true},
+	{"depth-extremes", false, false, false},
+	{"hdr-fireflies", false, false, false},
 };
 
 /* What each method asks for beyond the scene pass (engine/methods/, docs/methods.md). */

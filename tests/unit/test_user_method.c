@@ -204,7 +204,7 @@ static void test_bad_files(void **state)
  * frame it is per pixel, as for none and fxaa, history or not; jittered it is per sample, as for taa. */
 static int parse_text(const char *json, const char **message)
 {
-	static char msg[600];
+	static char msg[sizeof ((struct aa_error *)0)->message];
 	files_reset();
 	file_put("l.json", json);
 	file_put("a.frag", "void main() { aa_write(vec4(0)); }\n");

@@ -1,0 +1,57 @@
+#!/bin/sh
+# The hard-case suite's verdicts end to end (docs/hard-cases.md) on a small subset: the table is printed,
+# results.json holds a verdict per case and method, a clean run exits 0, and a method worse than none by
+# more than the margin (floor: a constant colour) fails its verdict and the run (exit 1, results kept).
+. "$(dirname "$0")/lib.sh"
+
+suite="$top_srcdir/tests/hardcases/small-suite.json"
+expect_status 0 "the small hard-case suite holds its verdicts" -- "$AALAB" run --local --quiet "$suite" --out "$TMP/a"
+grep -q "0 verdicts failed that must hold" "$TMP/out" && pass "the verdict table is printed" ||
+	fail "no verdict summary: $(tail -3 "$TMP/out")"
+/usr/bin/python3 - "$TMP/a/results.json" <<'PY' && pass "results.json: a verdict per case and method" || fail "results.json verdicts"
+import json, sys
+r = json.load(open(sys.argv[1]))
+v = r["verdicts"]
+assert v["failed"] == 0, v["failed"]
+items = v["items"]
+assert len(items) == 2 * 4, len(items)
+kinds = {"finite", "range", "stuck", "drift", "vs_none"}
+for it in items:
+    assert set(it["verdicts"]) == kinds, it
+    assert it["verdicts"]["finite"]["state"] == "pass" and it["verdicts"]["range"]["state"] == "pass", it
+# the static case judges drift, the moving one does not
+static = [it for it in items if it["case"].startswith("specular-aliasing/static")]
+assert all(it["verdicts"]["drift"]["state"] == "pass" for it in static), static
+moving = [it for it in items if it["case"].startswith("hdr-fireflies")]
+assert all(it["verdicts"]["drift"]["state"] == "n/a" for it in moving), moving
+ms = {m["label"] for m in r["cases"][0]["methods"]}
+assert "ssaa:4,tonemapped_resolve=true" in ms and "msaa:4,tonemapped_resolve=true" in ms, ms
+PY
+expect_status 1 "floor (a constant colour) fails vs_none and the run" -- \
+	"$AALAB" run --local --quiet "$suite" --methods none,floor --out "$TMP/b"
+expect_stderr "verdicts? failed" "the failure is said on stderr"
+grep -Eq "floor +pass 0 +pass 0 .*FAIL -[0-9.]+" "$TMP/out" && pass "the table shows floor's FAIL" ||
+	fail "table: $(grep floor "$TMP/out")"
+[ -s "$TMP/b/results.json" ] && pass "the results of a run with failed verdicts are kept" || fail "results discarded"
+
+# tonemapped_resolve: on hdr-fireflies Karis' weights keep a sub-pixel emitter (1e3-1e5) from filling its
+# whole resolve footprint with white, so fewer pixels saturate than with the linear box resolve
+expect_status 0 "ssaa and msaa with and without tonemapped_resolve" -- "$AALAB" run --local --quiet \
+	--scene hdr-fireflies --size 64x36 --frames 1 --reference-samples 8 --out "$TMP/tm" \
+	--methods "ssaa:4,ssaa:samples=4,tonemapped_resolve=true,msaa:4,msaa:samples=4,tonemapped_resolve=true"
+/usr/bin/python3 - "$TMP/tm/frames" <<'PY' >"$TMP/tm.txt" && pass "tone-mapped resolves saturate fewer pixels: $(cat "$TMP/tm.txt")" || fail "tonemapped_resolve: $(cat "$TMP/tm.txt")"
+import sys
+import numpy as np
+from skimage import io
+def saturated(name):
+    a = io.imread("%s/%s/0000.png" % (sys.argv[1], name))[..., :3]
+    return int((a.min(axis=2) >= 250).sum())
+n = {m: saturated(m) for m in ["ssaa_4", "ssaa_4_tonemapped_resolve-true", "msaa_4", "msaa_4_tonemapped_resolve-true"]}
+print(n)
+assert n["ssaa_4_tonemapped_resolve-true"] < n["ssaa_4"] and n["msaa_4_tonemapped_resolve-true"] < n["msaa_4"], n
+PY
+expect_status 2 "msaa's virtual path refuses tonemapped_resolve" -- "$AALAB" run --local --quiet \
+	--scene thin-wires --size 32x18 --frames 1 --reference-samples 2 --out "$TMP/v" \
+	--methods "msaa:samples=8,tonemapped_resolve=true"
+expect_stderr "tonemapped_resolve" "the error names the parameter"
+finish
