@@ -315,7 +315,16 @@ int cmd_run(int argc, char **argv)
 		}
 	} else {
 		aa_print_table(result->cases[0], stdout);
+		json_t *j = spec.verdicts ? aa_suite_results_to_json(result) : NULL;
+		const int failed = j ? aa_print_verdict_table(j, stdout) : 0;
+		json_decref(j);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
+		if (failed) {
+			fflush(stdout);
+			fprintf(stderr, "aalab run: %d verdict%s failed (docs/hard-cases.md)\n", failed,
+				failed == 1 ? "" : "s");
+			verdicts_failed = true;
+		}
 	}
 	if (validation_errors) {
 		fprintf(stderr, "aalab run: %d Vulkan validation errors\n", validation_errors);

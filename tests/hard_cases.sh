@@ -34,6 +34,17 @@ grep -Eq "floor +pass 0 +pass 0 .*FAIL -[0-9.]+" "$TMP/out" && pass "the table s
 	fail "table: $(grep floor "$TMP/out")"
 [ -s "$TMP/b/results.json" ] && pass "the results of a run with failed verdicts are kept" || fail "results discarded"
 
+# a single job (not a suite) with "verdicts": true judges its one case the same way
+echo '{"scene": "hard-edges", "size": "64x36", "frames": 2, "reference": {"samples": 8},
+ "methods": ["none", "fxaa", "floor"], "verdicts": true}' >"$TMP/one.json"
+expect_status 1 "a single job's verdicts: floor fails, the run exits 1" -- "$AALAB" run --local --quiet "$TMP/one.json" --out "$TMP/one"
+/usr/bin/python3 - "$TMP/one/results.json" <<'PY' && pass "a single job's results.json holds its verdicts" || fail "single-job verdicts"
+import json, sys
+v = json.load(open(sys.argv[1]))["verdicts"]
+states = {it["method"]: it["verdicts"]["vs_none"]["state"] for it in v["items"]}
+assert v["failed"] >= 1 and states == {"none": "n/a", "fxaa": "pass", "floor": "fail"}, (v["failed"], states)
+PY
+grep -q "verdicts failed that must hold" "$TMP/out" && pass "and prints the verdict table" || fail "no verdict table for a single job"
 # tonemapped_resolve: on hdr-fireflies Karis' weights keep a sub-pixel emitter (1e3-1e5) from filling its
 # whole resolve footprint with white, so fewer pixels saturate than with the linear box resolve
 expect_status 0 "ssaa and msaa with and without tonemapped_resolve" -- "$AALAB" run --local --quiet \

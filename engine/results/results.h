@@ -32,6 +32,8 @@ int aa_results_write_event_images(const char *dir, const struct aa_event *ev, st
 json_t *aa_results_to_json(const struct aa_job_result *r);
 /* Writes dir/results.json atomically (temp file, fsync, rename). */
 int aa_results_write_json(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* Writes a JSON document (results.json of a job or a suite) atomically into dir, as results.json is written. */
+int aa_results_write_json_doc(const json_t *root, const char *dir, const char *name, struct aa_error *err);
 /* Writes dir/name atomically: a temp file in dir, fsync, rename over name, fsync dir. */
 int aa_results_write_file_atomic(const char *dir, const char *name, const char *data, size_t size,
 				 struct aa_error *err);

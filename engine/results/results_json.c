@@ -532,27 +532,31 @@ fail:
 	return -1;
 }
 
+int aa_results_write_json_doc(const json_t *root, const char *dir, const char *name, struct aa_error *err)
+{
+	/* 15 significant digits: exact enough for every metric, and 0.1 prints as 0.1. */
+	char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(15));
+	if (!text)
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "cannot serialise %s", name);
+	const size_t len = strlen(text);
+	char *with_newline = realloc(text, len + 2);
+	if (!with_newline) {
+		free(text);
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing %s", name);
+	}
+	with_newline[len] = '\n';
+	with_newline[len + 1] = '\0';
+	int rc = aa_results_write_file_atomic(dir, name, with_newline, len + 1, err);
+	free(with_newline);
+	return rc;
+}
+
 int aa_results_write_json(const struct aa_job_result *r, const char *dir, struct aa_error *err)
 {
 	json_t *root = aa_results_to_json(r);
 	if (!root)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
-	/* 15 significant digits: exact enough for every metric, and 0.1 prints as 0.1. */
-	char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(15));
+	int rc = aa_results_write_json_doc(root, dir, "results.json", err);
 	json_decref(root);
-	if (!text)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "cannot serialise results.json");
-	const size_t len = strlen(text);
-	int rc = -1;
-	char *with_newline = realloc(text, len + 2);
-	if (with_newline) {
-		with_newline[len] = '\n';
-		with_newline[len + 1] = '\0';
-		rc = aa_results_write_file_atomic(dir, "results.json", with_newline, len + 1, err);
-		free(with_newline);
-	} else {
-		free(text);
-		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing results.json");
-	}
 	return rc;
 }

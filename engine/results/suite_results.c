@@ -53,8 +53,12 @@ static json_t *labels_json(const struct aa_job_spec *spec)
 
 json_t *aa_suite_results_to_json(const struct aa_suite_result *r)
 {
-	if (!r->spec.is_suite)
-		return r->case_count > 0 ? aa_results_to_json(r->cases[0]) : NULL;
+	if (!r->spec.is_suite) { /* a job's own results.json, with the verdicts of its one case when asked */
+		json_t *one = r->case_count > 0 ? aa_results_to_json(r->cases[0]) : NULL;
+		if (one && r->spec.verdicts)
+			json_object_set_new(one, "verdicts", aa_verdicts_json(r, NULL));
+		return one;
+	}
 	char hash[80];
 	aa_job_hash(&r->spec, hash, sizeof hash);
 	const struct aa_job_result *first = r->case_count > 0 ? r->cases[0] : NULL;
@@ -97,29 +101,17 @@ json_t *aa_suite_results_to_json(const struct aa_suite_result *r)
 	return root;
 }
 
-static int write_json_file(json_t *root, const char *dir, const char *name, struct aa_error *err)
-{
-	char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(15));
-	if (!text)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "cannot serialise %s", name);
-	size_t len = strlen(text);
-	char *with_newline = realloc(text, len + 2);
-	if (!with_newline) {
-		free(text);
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing %s", name);
-	}
-	with_newline[len] = '\n';
-	int rc = aa_results_write_file_atomic(dir, name, with_newline, len + 1, err);
-	free(with_newline);
-	return rc;
-}
-
 int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, struct aa_error *err)
 {
 	if (!r->spec.is_suite) {
 		if (r->case_count < 1)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "no results to write");
-		return aa_results_write_json(r->cases[0], dir, err) || aa_report_write_html(r->cases[0], dir, err) ? -1 : 0;
+		json_t *root = aa_suite_results_to_json(r);
+		if (!root)
+			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
+		int rc = aa_results_write_json_doc(root, dir, "results.json", err);
+		json_decref(root);
+		return rc || aa_report_write_html(r->cases[0], dir, err) ? -1 : 0;
 	}
 	for (int i = 0; i < r->case_count; i++) {
 		char rel[600], path[4200];
@@ -139,7 +131,7 @@ int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, str
 	json_t *root = aa_suite_results_to_json(r);
 	if (!root)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
-	int rc = write_json_file(root, dir, "results.json", err);
+	int rc = aa_results_write_json_doc(root, dir, "results.json", err);
 	json_decref(root);
 	if (rc == 0)
 		rc = aa_suite_report_write_html(r, dir, err);
