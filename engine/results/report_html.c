@@ -76,7 +76,7 @@ static double curve_mean(const struct aa_method_result *m, int t)
 	return n ? sum / n : NAN;
 }
 
-static double ref_convergence_psnr(const struct aa_reference_result *ref, bool *identical)
+double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical)
 {
 	double sum = 0;
 	int n = 0;
@@ -454,7 +454,7 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 
 	const struct aa_reference_result *ref = &r->reference;
 	bool identical;
-	const double conv = ref_convergence_psnr(ref, &identical);
+	const double conv = aa_reference_convergence_psnr(ref, &identical);
 	double *gpu = malloc((size_t)(ref->frame_count > 0 ? ref->frame_count : 1) * sizeof *gpu);
 	double gpu_median = NAN;
 	if (gpu && ref->frames) {

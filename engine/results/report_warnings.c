@@ -23,21 +23,6 @@ static void esc_text(FILE *o, const char *s)
 	}
 }
 
-/* PSNR of the reference's N/2- against its N-sample image from the mean MSE; NAN when none or identical. */
-static double convergence_psnr(const struct aa_reference_result *ref)
-{
-	double sum = 0;
-	int n = 0;
-	for (int i = 0; ref->frames && i < ref->frame_count; i++) {
-		const double mse = ref->frames[i].convergence_identical ? 0.0 : ref->frames[i].convergence_mse;
-		if (isfinite(mse)) {
-			sum += mse;
-			n++;
-		}
-	}
-	return n && sum > 0 ? aa_psnr_from_mse(sum / n, 255.0) : NAN;
-}
-
 static int by_median(const void *a, const void *b, void *sum)
 {
 	const struct aa_method_summary *s = sum;
@@ -66,7 +51,8 @@ void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const stru
 		item_begin(o, &count);
 		fprintf(o, "... and %d more scene warnings (results.json lists them)</li>\n", r->warnings_dropped);
 	}
-	const double conv = convergence_psnr(&r->reference);
+	bool identical;
+	const double conv = aa_reference_convergence_psnr(&r->reference, &identical);
 	if (isfinite(conv) && conv < CONVERGED_DB) {
 		item_begin(o, &count);
 		if (r->reference.auto_samples)
