@@ -1,0 +1,181 @@
+/* The renderer's state for one frame (aa_renderer_set_frame): the camera's matrices, skinned meshes posed
+ * at the frame's time, blended objects sorted back to front, and the shadow cascades fitted to the view,
+ * all written to the frame's uniform buffer before any pass of the frame is recorded (renderer.c). */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderer.h"
+
+static mat4 camera_projection(const struct aa_camera *c, int width, int height)
+{
+	float aspect = (float)width / (float)height;
+	if (c->projection == AA_PROJECTION_ORTHOGRAPHIC)
+		return mat4_ortho_reversed_z(c->ortho_height * aspect, c->ortho_height, c->near_plane, c->far_plane);
+	return mat4_perspective_reversed_z(c->fov_y_degrees * (float)M_PI / 180.0f, aspect, c->near_plane,
+					   c->far_plane);
+}
+
+/* Poses the skinned parts for time t into this frame's vertices and, for prev_t, into the previous
+ * positions the G-buffer reads for velocity (no previous frame: the same positions, no motion). Each
+ * object's world box comes from its posed vertices. */
+static void pose_skinned(struct aa_renderer *r, double t, bool has_prev, double prev_t)
+{
+	const struct aa_scene *s = r->scene;
+	struct aa_vertex *current = r->skinned_vertices.mapped;
+	float *previous = r->skinned_previous.mapped;
+	for (int o = 0; o < s->object_count; o++) {
+		if (r->skin_offset[o] < 0)
+			continue;
+		const struct aa_object *obj = &s->objects[o];
+		const struct aa_mesh *m = &s->meshes[obj->mesh_index];
+		const struct aa_rig *rig = &s->rigs[m->rig];
+		struct aa_vertex *out = current + r->skin_offset[o];
+		aa_rig_pose(rig, &obj->pose, t, r->joint_matrices);
+		aa_mesh_skin(m, r->joint_matrices, out);
+		float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+		for (uint32_t v = 0; v < m->vertex_count; v++)
+			for (int k = 0; k < 3; k++)
+				lo[k] = fminf(lo[k], out[v].position[k]), hi[k] = fmaxf(hi[k], out[v].position[k]);
+		if (m->vertex_count)
+			r->bounds[o] = aa_box_transform(r->models[o], lo, hi);
+		const struct aa_vertex *before = out;
+		if (has_prev) {
+			aa_rig_pose(rig, &obj->pose, prev_t, r->joint_matrices);
+			aa_mesh_skin(m, r->joint_matrices, r->skin_scratch);
+			before = r->skin_scratch;
+		}
+		for (uint32_t v = 0; v < m->vertex_count; v++) {
+			float *p = previous + 4 * ((size_t)r->skin_offset[o] + v);
+			p[0] = before[v].position[0], p[1] = before[v].position[1], p[2] = before[v].position[2], p[3] = 1.0f;
+		}
+	}
+}
+
+/* The blended objects this frame, farthest from the camera first (drawn over what lies behind them). */
+static int compare_depth(const void *a, const void *b, void *user)
+{
+	const float *depth = user;
+	float da = depth[*(const int *)a], db = depth[*(const int *)b];
+	return da > db ? -1 : da < db ? 1 : *(const int *)a - *(const int *)b;
+}
+
+static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
+{
+	const struct aa_scene *s = r->scene;
+	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
+	float *depth = malloc((size_t)(s->object_count ? s->object_count : 1) * sizeof *depth);
+	r->blend_count = 0;
+	for (int o = 0; o < s->object_count; o++) {
+		if (!s->materials[s->objects[o].material_index].blend)
+			continue;
+		vec3 c = v3_scale(v3_add(r->bounds[o].min, r->bounds[o].max), 0.5f);
+		if (depth)
+			depth[o] = v3_dot(v3_sub(c, camera->position), forward);
+		r->blend_order[r->blend_count++] = o;
+	}
+	if (depth)
+		qsort_r(r->blend_order, (size_t)r->blend_count, sizeof *r->blend_order, compare_depth, depth);
+	free(depth);
+}
+
+/* The shadow cascades for this camera (shadow_fit.c) into the frame uniforms. */
+static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, int light, struct aa_frame_uniforms *u)
+{
+	const struct aa_scene *s = r->scene;
+	const float *d = s->lights[light].direction;
+	struct aa_shadow_fit_input in = {
+		.camera = *camera, .aspect = (float)r->width / (float)r->height,
+		.light_direction = v3(d[0], d[1], d[2]), .boxes = r->bounds, .box_count = s->object_count,
+		.tile_size = AA_SHADOW_TILE_SIZE,
+	};
+	aa_shadow_fit(&in, &r->shadow_fit);
+	const struct aa_shadow_fit *f = &r->shadow_fit;
+	memcpy(u->shadow_light_view, f->light_view.m, sizeof u->shadow_light_view);
+	for (int i = 0; i < AA_SHADOW_CASCADES; i++) {
+		const struct aa_shadow_cascade *c = &f->cascades[i];
+		for (int k = 0; k < 3; k++) {
+			u->shadow_cascade_scale[i][k] = c->scale[k];
+			u->shadow_cascade_offset[i][k] = c->offset[k];
+		}
+		u->shadow_cascade_scale[i][3] = 0.5f / AA_SHADOW_TILE_SIZE;
+		u->shadow_cascade_offset[i][3] = c->texel * c->scale[2];
+		if (i + 1 < AA_SHADOW_CASCADES) /* beyond the cascades in use: never reached */
+			u->shadow_splits[i] = isfinite(f->splits[i + 1]) ? f->splits[i + 1] : 3.0e38f;
+	}
+	u->shadow_splits[3] = isfinite(f->splits[AA_SHADOW_CASCADES]) ? f->splits[AA_SHADOW_CASCADES] : 3.0e38f;
+	/* the first cascade as one matrix, for anything that reads the old single map's field */
+	const struct aa_shadow_cascade *c0 = &f->cascades[0];
+	mat4 fit = mat4_identity();
+	fit.m[0] = c0->scale[0], fit.m[5] = c0->scale[1], fit.m[10] = c0->scale[2];
+	fit.m[12] = c0->offset[0], fit.m[13] = c0->offset[1], fit.m[14] = c0->offset[2];
+	r->shadow_view_proj = mat4_mul(fit, f->light_view);
+	memcpy(u->shadow_view_proj, r->shadow_view_proj.m, sizeof u->shadow_view_proj);
+}
+
+void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
+			   const struct aa_camera *prev_camera, double prev_t, struct aa_frame_ctx *ctx)
+{
+	const struct aa_scene *s = r->scene;
+	ctx->camera = *camera;
+	ctx->time = t;
+	ctx->width = r->width;
+	ctx->height = r->height;
+	ctx->view = mat4_look_at(camera->position, camera->target, camera->up);
+	ctx->proj = camera_projection(camera, r->width, r->height);
+	ctx->view_proj = mat4_mul(ctx->proj, ctx->view);
+	ctx->prev_view_proj = ctx->view_proj;
+	if (prev_camera)
+		ctx->prev_view_proj = mat4_mul(camera_projection(prev_camera, r->width, r->height),
+					       mat4_look_at(prev_camera->position, prev_camera->target, prev_camera->up));
+	mat4 *prev = r->prev_models.mapped; /* by model_id: every part of an object moves as the object */
+	for (int o = 0; o < s->object_count; o++) {
+		const struct aa_object *obj = &s->objects[o];
+		const struct aa_mesh *m = &s->meshes[obj->mesh_index];
+		r->models[o] = aa_object_model_matrix(obj, t);
+		prev[obj->model_id - 1] = prev_camera ? aa_object_model_matrix(obj, prev_t) : r->models[o];
+		r->bounds[o] = aa_box_transform(r->models[o], m->bounds_min, m->bounds_max);
+	}
+	pose_skinned(r, t, prev_camera != NULL, prev_t);
+	sort_blended(r, camera);
+
+	struct aa_frame_uniforms *u = &r->uniforms;
+	memset(u, 0, sizeof *u);
+	memcpy(u->view_proj, ctx->view_proj.m, sizeof u->view_proj);
+	memcpy(u->prev_view_proj, ctx->prev_view_proj.m, sizeof u->prev_view_proj);
+	u->camera_planes[0] = camera->near_plane;
+	u->camera_planes[1] = camera->far_plane;
+	u->camera_planes[2] = camera->projection == AA_PROJECTION_ORTHOGRAPHIC ? 1.0f : 0.0f;
+	u->camera_position[0] = camera->position.x;
+	u->camera_position[1] = camera->position.y;
+	u->camera_position[2] = camera->position.z;
+	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
+	u->camera_forward[0] = forward.x, u->camera_forward[1] = forward.y, u->camera_forward[2] = forward.z;
+	memcpy(u->ambient, s->ambient, 3 * sizeof(float));
+	u->frame_size[0] = (float)r->width;
+	u->frame_size[1] = (float)r->height;
+	int shadow_light = -1;
+	for (int i = 0; i < s->light_count && i < AA_MAX_LIGHTS; i++) {
+		const struct aa_light *l = &s->lights[i];
+		bool point = l->type == AA_LIGHT_POINT;
+		const float *p = point ? l->position : l->direction;
+		for (int k = 0; k < 3; k++) {
+			u->lights[i].position_type[k] = p[k];
+			u->lights[i].color_range[k] = l->color[k] * l->intensity;
+		}
+		u->lights[i].position_type[3] = point ? 1.0f : 0.0f;
+		u->lights[i].color_range[3] = l->range;
+		if (i == r->shadow_light) {
+			shadow_light = i;
+			u->lights[i].shadow[0] = 1.0f;
+		}
+		u->counts[0] = i + 1;
+	}
+	u->counts[1] = shadow_light >= 0;
+	u->counts[2] = r->inject_nonfinite;
+	if (shadow_light >= 0)
+		fit_shadow(r, camera, shadow_light, u);
+	memcpy(r->frame_ubo.mapped, u, sizeof *u);
+}
