@@ -7,6 +7,7 @@
 #include <jansson.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "scene.h"
 
@@ -23,6 +24,13 @@ struct sj_range {
 	double min, max;
 	bool min_open, max_open;
 };
+/* Whether s ends with suffix (a scene file's ".json"). */
+static inline bool sj_ends_with(const char *s, const char *suffix)
+{
+	size_t a = strlen(s), b = strlen(suffix);
+	return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
 #define SJ_MAX_ABS 1e7
 #define SJ_ANY ((struct sj_range){-SJ_MAX_ABS, SJ_MAX_ABS, false, false})
 #define SJ_POSITIVE ((struct sj_range){0.0, SJ_MAX_ABS, true, false})
