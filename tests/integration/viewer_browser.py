@@ -91,7 +91,14 @@ class Viewer:
         return self.b.eval("(() => { const r = document.querySelector(%s).getBoundingClientRect();"
                            " return {x: r.left, y: r.top, w: r.width, h: r.height}; })()" % json.dumps(selector))
 
+    def settle(self):
+        """The viewer changes its state at once but draws on the next animation frame (redraw()), so a
+        test that reads the page right after a state change could see the previous drawing: wait two
+        animation frames first."""
+        self.b.eval("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+
     def pane_pixels(self, pane):
+        self.settle()
         return self.b.eval("(() => { const c = document.querySelector('[data-pane=\"%s\"]');"
                            " return [c.width, c.height, Array.from(c.getContext('2d').getImageData(0, 0, c.width,"
                            " c.height).data)]; })()" % pane)
@@ -176,6 +183,7 @@ def run_steps(v, shots=None, at=None):
     bad, seen = v.pane_mismatches("ab:0", ref0)
     bad_a, _ = v.pane_mismatches("ab:0", v.png("frames", a_label, 0))
     check(bad == 0 and bad_a > 0, "F flips the A/B pane to the reference (%d pixels differ from it, %d from A)" % (bad, bad_a))
+    v.settle()
     check(b.eval("document.querySelector('.vw-ab .vw-cap').dataset.showing") == "B", "the caption says B is shown")
     shot("3-flip-reference")
 
@@ -184,6 +192,7 @@ def run_steps(v, shots=None, at=None):
     ix, iy = int(s["cx"]) - 2, int(s["cy"]) + 1
     b.mouse("mouseMoved", ab["x"] + s["ox"] + ix * 8 + 4, ab["y"] + s["oy"] + iy * 8 + 4)
     b.wait_for("aalabViewer.state().px === %d && aalabViewer.state().py === %d" % (ix, iy), 5)
+    v.settle()
     rows = b.eval("Array.from(document.querySelectorAll('.vw-inspector tr[data-source]')).map(r =>"
                   " [r.dataset.source, r.querySelector('.vw-srgb').textContent, r.querySelector('.vw-lin').textContent])")
     want = {"-1": ref0[iy][ix]}
@@ -281,6 +290,7 @@ def run_steps(v, shots=None, at=None):
     if regions:
         g = regions[0]
         b.wait_for("document.querySelectorAll('.vw-region canvas').length > 0", 5)
+        v.settle()
         crop = b.eval("(() => { const c = document.querySelector('.vw-region[data-region=\"0\"] canvas');"
                       " return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data); })()")
         refg = v.png("frames", None, g["ordinal"])
