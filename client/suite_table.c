@@ -28,9 +28,16 @@ void aa_print_suite_table(json_t *results, FILE *out)
 		fprintf(out, ", %s=%s", key, json_string_value(v));
 	fprintf(out, ", %s\n\n", json_string_value(json_object_get(json_object_get(results, "device"), "name")) ?
 				    json_string_value(json_object_get(json_object_get(results, "device"), "name")) : "");
+	/* the method column fits the longest label, so parameters do not push the columns */
+	int width = 24;
+	json_array_foreach(json_object_get(results, "cases"), i, c)
+		json_array_foreach(json_object_get(c, "methods"), j, m) {
+			const char *label = json_string_value(json_object_get(m, "label"));
+			width = label && (int)strlen(label) > width ? (int)strlen(label) : width;
+		}
 	/* GPU ms: the median over every timed render, with the 10th-90th percentile range */
-	fprintf(out, "%-34s %-24s %12s %15s %8s %10s %8s %8s %8s\n", "case", "method", "GPU ms/frame", "p10-p90 ms",
-		"MB", "PSNR dB", "SSIM", "FLIP", "flicker");
+	fprintf(out, "%-34s %-*s %12s %15s %8s %10s %8s %8s %8s\n", "case", width, "method",
+		"GPU ms/frame", "p10-p90 ms", "MB", "PSNR dB", "SSIM", "FLIP", "flicker");
 	json_array_foreach(json_object_get(results, "cases"), i, c) {
 		json_array_foreach(json_object_get(c, "methods"), j, m) {
 			json_t *gpu = json_object_get(m, "gpu_ms");
@@ -42,8 +49,8 @@ void aa_print_suite_table(json_t *results, FILE *out)
 				snprintf(psnr_text, sizeof psnr_text, "%s",
 					 json_is_true(json_object_get(psnr, "identical")) ? "identical" : "-");
 			snprintf(spread, sizeof spread, "%.2f-%.2f", number(gpu, "p10"), number(gpu, "p90"));
-			fprintf(out, "%-34s %-24s %12.2f %15s %8.2f %10s %8.4f %8.4f %8.3f\n",
-				j == 0 ? json_string_value(json_object_get(c, "id")) : "",
+			fprintf(out, "%-34s %-*s %12.2f %15s %8.2f %10s %8.4f %8.4f %8.3f\n",
+				j == 0 ? json_string_value(json_object_get(c, "id")) : "", width,
 				json_string_value(json_object_get(m, "label")), number(gpu, "median"), spread,
 				number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
 				metric_mean(m, "flip"), metric_mean(m, "flicker"));

@@ -53,7 +53,10 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 	/* GPU time over every timed render (frames x --repeat): median, the 10th-90th percentile range, count */
 	char over_head[24]; /* idiff's count: pixels with a channel off by more than the threshold */
 	snprintf(over_head, sizeof over_head, "%%px >%g", r->spec.over_threshold);
-	fprintf(out, "%-24s %12s %15s %4s %9s %10s %8s %10s", "method", "GPU ms/frame", "p10-p90 ms", "n", "MB",
+	int width = 24; /* the method column fits the longest label, so parameters do not push the columns */
+	for (int i = 0; i < r->method_count; i++)
+		width = (int)strlen(r->methods[i].label) > width ? (int)strlen(r->methods[i].label) : width;
+	fprintf(out, "%-*s %12s %15s %4s %9s %10s %8s %10s", width, "method", "GPU ms/frame", "p10-p90 ms", "n", "MB",
 		"PSNR dB", "SSIM", over_head);
 	if (sequence) /* per-sequence figures: worst and best frame (index), and the temporal stability figure */
 		fprintf(out, " %16s %16s %8s", "worst dB (frame)", "best dB (frame)", "flicker");
@@ -66,7 +69,7 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		format_psnr(s.psnr_mean, s.psnr_identical, psnr, sizeof psnr);
 		char spread[48];
 		snprintf(spread, sizeof spread, "%.2f-%.2f", s.gpu_ms.p10, s.gpu_ms.p90);
-		fprintf(out, "%-24s %12.2f %15s %4d %9.1f %10s %8.4f %10.2f", m->label, s.gpu_ms.median, spread,
+		fprintf(out, "%-*s %12.2f %15s %4d %9.1f %10s %8.4f %10.2f", width, m->label, s.gpu_ms.median, spread,
 			s.gpu_ms.n, m->memory_bytes / (1024.0 * 1024.0), psnr, s.ssim_mean,
 			100.0 * s.over_threshold_mean / ((double)r->spec.width * r->spec.height));
 		if (sequence) {

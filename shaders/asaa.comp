@@ -35,7 +35,25 @@ layout(push_constant) uniform Push {
 	float motion_samples; // cap on N while the pixel moves (thesis: 4, Listing 4.11)
 	float final_radius;   // tent radius of the frame reconstruction in footprints (thesis: 2 x 0.5)
 	int still;            // priming after a cut: every buffer shows this frame, ignore velocity
+	int tonemapped_resolve; // Karis' 1/(1 + luma) weight on every colour summed or blended
 } pc;
+
+// tonemapped_resolve: each tap (a bilinear fetch of 2x2 texels), the new sample and the history count
+// 1/(1 + luma) times their usual weight (Karis 2014, as t2msaa's blend), so a jittered hit on an HDR
+// emitter cannot spread it over the pixel and its neighbours for frames.
+float resolve_weight(vec3 c)
+{
+	return pc.tonemapped_resolve != 0 ? 1.0 / (1.0 + luma(c)) : 1.0;
+}
+
+// mix(a, b, k) with those weights: k is b's share before weighting
+vec3 resolve_mix(vec3 a, vec3 b, float k)
+{
+	if (pc.tonemapped_resolve == 0) // uniform: the plain mix, bit for bit
+		return mix(a, b, k);
+	float wa = (1.0 - k) * resolve_weight(a), wb = k * resolve_weight(b);
+	return (wa * a + wb * b) / (wa + wb);
+}
 
 const float NO_HISTORY = 65000.0;
 
@@ -102,7 +120,8 @@ void main()
 	vec2 rb = 0.5 * r, rf = pc.final_radius * r;
 	vec2 phi_i = pc.quadrant[pc.index].xy;
 	vec3 cb = vec3(0.0), cf = vec3(0.0);
-	float wb_sum = 0.0, wf_sum = 0.0;
+	float wb_sum = 0.0, wf_sum = 0.0; // tent coverage: how much of the footprint the buffers hold
+	float kb_sum = 0.0, kf_sum = 0.0; // the weights cb and cf are sums of (tent x resolve_weight)
 	for (int age = 0; age < 4; age++) {
 		if (!(reprojected && valid[age] && age < pc.valid_ages))
 			continue;
@@ -113,11 +132,15 @@ void main()
 		vec4 b = tent_fetch(k, previous + phi_i - phi_k, rb, wb);  // Eq. 3.23
 		vec4 f = tent_fetch(k, previous - phi_k, rf, wf);          // Eq. 3.27
 		if (wb > 0.0 && all_finite(b.rgb) && !(depth_test && disoccluded(depth, depth_decode(b.w)))) {
-			cb += wb * b.rgb;
+			float k = wb * resolve_weight(b.rgb);
+			cb += k * b.rgb;
+			kb_sum += k;
 			wb_sum += wb;
 		}
 		if (wf > 0.0 && all_finite(f.rgb) && !(depth_test && disoccluded(depth, depth_decode(f.w)))) {
-			cf += wf * f.rgb;
+			float k = wf * resolve_weight(f.rgb);
+			cf += k * f.rgb;
+			kf_sum += k;
 			wf_sum += wf;
 		}
 	}
@@ -132,12 +155,12 @@ void main()
 	if (!(wb_sum > 1e-3))
 		n = 0.0; // nothing of this quadrant survived: full weight to the new sample
 	float a = 1.0 / (floor(n * 0.25) + 1.0);
-	vec3 buffer_value = a < 1.0 ? mix(cb / wb_sum, s, a) : s;                       // Eq. 3.26
+	vec3 buffer_value = a < 1.0 ? resolve_mix(cb / kb_sum, s, a) : s;                // Eq. 3.26
 	vec3 frame = s;
 	if (a < 1.0 && wf_sum > 1e-3)
-		frame = mix(cf / wf_sum, s, 0.25 * a); // Eq. 3.28
-	else if (wf_sum > 1e-3)
-		frame = (cf + s) / (wf_sum + 1.0);     // own quadrant empty: s stands in for its buffer
+		frame = resolve_mix(cf / kf_sum, s, 0.25 * a); // Eq. 3.28
+	else if (wf_sum > 1e-3)                            // own quadrant empty: s stands in for its buffer
+		frame = (cf + resolve_weight(s) * s) / (kf_sum + resolve_weight(s));
 
 	float n_next = min(n + 1.0, 4.0 * pc.max_samples + 3.0);
 

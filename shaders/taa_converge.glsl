@@ -50,6 +50,7 @@ layout(push_constant) uniform Push {
 	int clip_variance;    // 0: AABB (3x3 and cross min/max averaged, as seed 001), 1: variance
 	int catmull_rom;      // history read under motion: 0 bilinear, 1 Catmull-Rom
 	int clip_linear;      // clip in linear YCoCg instead of tonemapped YCoCg
+	int tonemapped_resolve; // Karis' 1/(1 + luma) weight on every colour summed or blended
 	float filter_weights[9]; // reconstruction filter weight of each 3x3 sample this frame, row by row
 } pc;
 
@@ -77,6 +78,22 @@ vec3 tonemap_inverse(vec3 t)
 {
 	t = max(t, vec3(0.0));
 	return t / max(1.0 - luma709(t), 1.0 / 65504.0);
+}
+
+// tonemapped_resolve: a colour's weight in every sum and blend is 1/(1 + luma) (Karis 2014), so a
+// sample of an HDR emitter counts about as much as a white one instead of 1e4 times more.
+float resolve_weight(vec3 c)
+{
+	return pc.tonemapped_resolve != 0 ? 1.0 / (1.0 + luma709(c)) : 1.0;
+}
+
+// mix(a, b, k) with those weights: k is b's share before weighting
+vec3 resolve_mix(vec3 a, vec3 b, float k)
+{
+	if (pc.tonemapped_resolve == 0) // uniform: the plain mix, bit for bit
+		return mix(a, b, k);
+	float wa = (1.0 - k) * resolve_weight(a), wb = k * resolve_weight(b);
+	return (wa * a + wb * b) / (wa + wb);
 }
 
 // The working space of the clip box: tonemapped YCoCg, or linear YCoCg with clip_space=linear.
@@ -180,7 +197,7 @@ Neighbourhood gather(ivec2 p)
 			if (!finite3(c)) // non-finite samples are left out: they must not reach history
 				continue;
 			c = clamp(c, vec3(0.0), vec3(65504.0));
-			float w = pc.filter_weights[(y + 1) * 3 + (x + 1)];
+			float w = pc.filter_weights[(y + 1) * 3 + (x + 1)] * resolve_weight(c);
 			filtered += w * c;
 			c = to_working(c);
 			filter_weight += w;
@@ -334,18 +351,18 @@ void main()
 		if (still && run_length == 0.0 && past_run.a >= cycle)
 			n = 1.0;
 		n = min(n + 1.0, motion_sample_cap(nb.filtered_working.x, w.x));
-		h = mix(from_working(w), nb.filtered, 1.0 / n);
+		h = resolve_mix(from_working(w), nb.filtered, 1.0 / n);
 	}
 	if (still) {
 		run_length += 1.0;
 		float in_cycle = mod(run_length - 1.0, cycle) + 1.0; // this sample's place in its cycle, 1..cycle
-		cycle_mean = in_cycle == 1.0 ? own : mix(cycle_mean, own, 1.0 / in_cycle);
+		cycle_mean = in_cycle == 1.0 ? own : resolve_mix(cycle_mean, own, 1.0 / in_cycle);
 		lumas = with_position_luma(lumas, pc.jitter_index, own_luma);
 		if (in_cycle == cycle) {
 			// A whole cycle: its mean replaces history when the pixel settles or the mean moved away from
 			// history (a change the per-position test missed), and is folded into it otherwise.
 			bool replace = run_length == cycle || distance(to_working(cycle_mean), to_working(h)) > CHANGE;
-			h = replace ? cycle_mean : mix(h, cycle_mean, cycle / (n + cycle));
+			h = replace ? cycle_mean : resolve_mix(h, cycle_mean, cycle / (n + cycle));
 			n = replace ? min(cycle, pc.max_samples) : min(n + cycle, pc.max_samples);
 		}
 		imageStore(positions, p, lumas);

@@ -26,6 +26,9 @@ static const struct aa_param_def asaa_params[] = {
 	{.name = "prime", .type = AA_PARAM_BOOL, .def = 1, .min = 0, .max = 1,
 	 .help = "after a camera cut render all four quadrants at once, so the first frame is not aliased "
 		 "(not in the thesis; costs four scene renders on that frame)"},
+	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "weight every colour the buffer update and the frame reconstruction sum or blend by Karis' "
+		 "1/(1+luma), so one HDR sample cannot dominate (issue 17)"},
 };
 
 enum { SRC_CURRENT, SRC_VELOCITY, SRC_SURFACE, SRC_BUFFERS, SRC_MOTION_A, SRC_MOTION_B, DST_UPDATED,
@@ -35,6 +38,7 @@ struct aa_method_state {
 	struct aa_renderer *r;
 	float max_samples, sigma, final_radius;
 	bool prime, reset_pending;
+	bool tonemapped_resolve;          /* Karis-weighted sums and blends */
 	int valid_ages;                   /* buffers written since the last reset, at most 4 */
 	int parity;                       /* motion[parity] holds last frame's displacements */
 	struct aa_scene_target scene;     /* G-buffer: colour, velocity, linear depth */
@@ -52,7 +56,7 @@ struct asaa_push {
 	int32_t size[2];
 	int32_t index, valid_ages;
 	float max_samples, motion_samples, final_radius;
-	int32_t still;
+	int32_t still, tonemapped_resolve;
 };
 
 static void asaa_destroy(struct aa_method_state *s)
@@ -154,9 +158,10 @@ static int asaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	s->sigma = (float)p->v[1];
 	s->final_radius = (float)p->v[2];
 	s->prime = p->v[3] != 0;
+	s->tonemapped_resolve = p->v[4] != 0;
 	s->reset_pending = true;
-	snprintf(info->path_taken, sizeof info->path_taken, "4 sub-pixel buffers, velocity reprojection%s",
-		 s->prime ? ", primed after cuts" : "");
+	snprintf(info->path_taken, sizeof info->path_taken, "4 sub-pixel buffers, velocity reprojection%s%s",
+		 s->prime ? ", primed after cuts" : "", s->tonemapped_resolve ? ", Karis-weighted resolve" : "");
 	if (create_images(r, s, info, err) || create_pipeline(r, s, err)) {
 		asaa_destroy(s);
 		return -1;
@@ -197,6 +202,7 @@ static void asaa_step(struct aa_method_state *s, struct aa_frame_ctx *ctx, int f
 	struct asaa_push push = {
 		.size = {ctx->width, ctx->height}, .index = index, .valid_ages = s->valid_ages,
 		.max_samples = s->max_samples, .motion_samples = 4.0f, .final_radius = s->final_radius, .still = still,
+		.tonemapped_resolve = s->tonemapped_resolve,
 	};
 	for (int k = 0; k < 4; k++)
 		aa_jitter_quadrant(k, push.quadrant[k]);
@@ -266,7 +272,7 @@ const struct aa_method aa_method_asaa = {
 	.summary = "amortised supersampling: four sub-pixel buffers, one refreshed per frame, tent reconstruction",
 	.seed = "seed 000 (sections 3.8 and 4.4.1, ASAA)",
 	.params = asaa_params,
-	.param_count = 4,
+	.param_count = sizeof asaa_params / sizeof asaa_params[0],
 	.main_param = NULL,
 	.needs = AA_NEED_VELOCITY | AA_NEED_HISTORY | AA_NEED_SUBSAMPLES,
 	.create = asaa_create,

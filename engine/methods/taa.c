@@ -15,7 +15,7 @@ static const char *const taa_clips[] = {"aabb", "variance", NULL};
 static const char *const taa_clip_spaces[] = {"tonemapped", "linear", NULL};
 
 enum { P_JITTER, P_FEEDBACK_MIN, P_FEEDBACK_MAX, P_SHARPEN, P_PRESET, P_HISTORY_FILTER, P_CLIP, P_GAMMA,
-       P_MAX_SAMPLES, P_CLIP_SPACE, P_COUNT };
+       P_MAX_SAMPLES, P_CLIP_SPACE, P_TONEMAPPED_RESOLVE, P_COUNT };
 
 /* Defaults: INSIDE's feedback range (0.88-0.97), which seed 001 builds on but does not state; 16 Halton
  * points as seed 001 uses; sharpen off: against a box-filtered reference every sharpening kernel lowers
@@ -52,6 +52,9 @@ static const struct aa_param_def taa_params[] = {
 	{.name = "clip_space", .type = AA_PARAM_ENUM, .def = AA_TAA_CLIP_SPACE_TONEMAPPED, .min = 0, .max = 1,
 	 .choices = taa_clip_spaces,
 	 .help = "space of the clip box: YCoCg of c/(1+luma) (Karis) or of linear colour"},
+	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
+	 .help = "weight every colour the resolve sums or blends (the 3x3 filter, history and current, the "
+		 "still pixels' means) by Karis' 1/(1+luma), so one HDR sample cannot dominate (issue 17)"},
 };
 _Static_assert(sizeof taa_params / sizeof taa_params[0] == P_COUNT, "taa_params lists every parameter");
 _Static_assert(P_COUNT <= AA_MAX_PARAMS, "taa's parameters fit in struct aa_method_params");
@@ -81,6 +84,7 @@ static int taa_config(const struct aa_method_params *p, bool master, struct aa_t
 		.clip = (enum aa_taa_clip)(int)p->v[P_CLIP], .gamma = (float)p->v[P_GAMMA],
 		.max_samples = (int)p->v[P_MAX_SAMPLES],
 		.clip_space = (enum aa_taa_clip_space)(int)p->v[P_CLIP_SPACE],
+		.tonemapped_resolve = p->v[P_TONEMAPPED_RESOLVE] != 0,
 	};
 	if (c->feedback_min > c->feedback_max)
 		return aa_error_set(err, AA_ERR_INVALID, "params.feedback_min", "feedback_min (%g) must not exceed "

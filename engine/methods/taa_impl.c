@@ -37,7 +37,7 @@ struct taa_converge_push {
 	float jitter[2];
 	int32_t size[2];
 	float feedback_min, feedback_max, gamma, max_samples;
-	int32_t cycle, jitter_index, history_valid, clip_variance, catmull_rom, clip_linear;
+	int32_t cycle, jitter_index, history_valid, clip_variance, catmull_rom, clip_linear, tonemapped_resolve;
 	float filter_weights[9];
 };
 
@@ -231,9 +231,10 @@ static void describe(const struct aa_taa_config *c, struct aa_method_result *inf
 		snprintf(clip, sizeof clip, "variance %.3g", (double)c->gamma);
 	snprintf(info->path_taken, sizeof info->path_taken,
 		 "preset converge: Halton x%d, filtered current, %s %s clip, %s, %s history, still "
-		 "pixels <= %d samples", c->jitter_length, box, clip,
+		 "pixels <= %d samples%s", c->jitter_length, box, clip,
 		 c->clip_space == AA_TAA_CLIP_SPACE_LINEAR ? "linear" : "tonemapped",
-		 c->history_filter == AA_TAA_HISTORY_CATMULL_ROM ? "Catmull-Rom" : "bilinear", c->max_samples);
+		 c->history_filter == AA_TAA_HISTORY_CATMULL_ROM ? "Catmull-Rom" : "bilinear", c->max_samples,
+		 c->tonemapped_resolve ? ", Karis-weighted resolve" : "");
 }
 
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,
@@ -295,6 +296,7 @@ static void record_resolve(struct aa_method_state *s, struct aa_frame_ctx *ctx, 
 		.history_valid = s->history_valid, .clip_variance = s->config.clip == AA_TAA_CLIP_VARIANCE,
 		.catmull_rom = s->config.history_filter == AA_TAA_HISTORY_CATMULL_ROM,
 		.clip_linear = s->config.clip_space == AA_TAA_CLIP_SPACE_LINEAR,
+		.tonemapped_resolve = s->config.tonemapped_resolve,
 	};
 	reconstruction_weights(jitter, push.filter_weights);
 	aa_compute_pass_dispatch(ctx->cmd, &s->converge[k], &push, sizeof push, aa_compute_groups(r->width, 8),

@@ -25,6 +25,7 @@ struct aa_taa_config {
 	float gamma;           /* variance clip: mean +- gamma * sigma */
 	int max_samples;       /* cap on the per-pixel sample count of still pixels */
 	enum aa_taa_clip_space clip_space;
+	bool tonemapped_resolve; /* Karis-weighted sums and blends */
 };
 
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,
