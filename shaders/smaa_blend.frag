@@ -4,7 +4,10 @@
 // and mixes in the neighbours on that axis. The reference does this with two bilinear reads at
 // fractional offsets; on one axis those are exactly lerps between two texels, done here from texel reads
 // (cheaper on lavapipe). The colour is the linear scene colour, so the blend happens in linear light
-// (what SMAA's sRGB view achieves) and the output is linear again.
+// (what SMAA's sRGB view achieves) and the output is linear again. It runs behind an early depth test
+// against the edge pass's blend mask, into a copy of the scene colour: lavapipe shades only the blocks
+// that hold a pixel whose weights may be non-zero (a branch cannot skip work there).
+layout(early_fragment_tests) in;
 layout(set = 0, binding = 0) uniform sampler2D colour_tex;  // linear RGBA16F
 layout(set = 0, binding = 1) uniform sampler2D weights_tex; // RGBA8 from pass 2
 layout(location = 0) out vec4 out_colour;

@@ -1,6 +1,7 @@
 #version 450
 // SMAA pass 1, edge detection (notes/smaa.md §2). Writes (left edge, top edge) as 0 or 1 into an RG8
-// target cleared to 0, and discards pixels with neither. Luma and colour modes read the sRGB-encoded
+// target, and the blend mask into depth: 0 where the blend pass may read a non-zero weight, 1 where it
+// surely reads none (then its output is the scene colour, and it need not run there). Luma and colour modes read the sRGB-encoded
 // colour with its luma in alpha (shaders/smaa_encode.frag); depth mode reads the scene depth. Reads
 // outside the image clamp to the border pixel. A fragment pass, not a compute one: per-pixel compute
 // passes cost several times more on lavapipe.
@@ -36,34 +37,46 @@ float colour_delta(vec3 a, vec3 b)
 	return max(max(t.r, t.g), t.b);
 }
 
+// The blend at p reads the weights of p's own edges and those of the left edge of p's right neighbour and
+// the top edge of p's bottom neighbour (smaa_blend.frag); the weight pass writes weights only across an
+// edge the edge pass found. Those two neighbour edges are the deltas to the right and bottom measured
+// here (the same values: |a - b| = |b - a|), before the contrast adaptation that can only drop them, so
+// blend_may_run is false only where every weight the blend reads is 0.
+bool blend_may_run;
+
 vec2 detect(ivec2 p)
 {
 	vec2 edges;
 	if (EDGE_MODE == 2) {
 		float d = fetch(p).r;
 		vec2 delta = abs(d - vec2(fetch(p + ivec2(-1, 0)).r, fetch(p + ivec2(0, -1)).r));
-		return step(vec2(push.threshold), delta); // no contrast adaptation on depth
+		vec2 delta_rb = abs(d - vec2(fetch(p + ivec2(1, 0)).r, fetch(p + ivec2(0, 1)).r));
+		edges = step(vec2(push.threshold), delta); // no contrast adaptation on depth
+		blend_may_run = edges.x + edges.y > 0.0 || any(greaterThanEqual(delta_rb, vec2(push.threshold)));
+		return edges;
 	}
 	// Left and top deltas decide whether there is an edge at all; most pixels stop here.
 	vec2 delta_lt, delta_rb, delta_far;
 	if (EDGE_MODE == 0) {
 		float l = luma(p), l_left = luma(p + ivec2(-1, 0)), l_top = luma(p + ivec2(0, -1));
 		delta_lt = abs(l - vec2(l_left, l_top));
+		delta_rb = abs(l - vec2(luma(p + ivec2(1, 0)), luma(p + ivec2(0, 1))));
 		edges = step(vec2(push.threshold), delta_lt);
+		blend_may_run = any(greaterThanEqual(delta_rb, vec2(push.threshold)));
 		if (edges.x + edges.y == 0.0)
 			return edges;
-		delta_rb = abs(l - vec2(luma(p + ivec2(1, 0)), luma(p + ivec2(0, 1))));
 		// the second ring is measured against the neighbour, not the centre
 		delta_far = abs(vec2(l_left, l_top) - vec2(luma(p + ivec2(-2, 0)), luma(p + ivec2(0, -2))));
 	} else {
 		vec3 c = gamma_colour(p);
 		delta_lt = vec2(colour_delta(c, gamma_colour(p + ivec2(-1, 0))),
 				colour_delta(c, gamma_colour(p + ivec2(0, -1))));
-		edges = step(vec2(push.threshold), delta_lt);
-		if (edges.x + edges.y == 0.0)
-			return edges;
 		delta_rb = vec2(colour_delta(c, gamma_colour(p + ivec2(1, 0))),
 				colour_delta(c, gamma_colour(p + ivec2(0, 1))));
+		edges = step(vec2(push.threshold), delta_lt);
+		blend_may_run = any(greaterThanEqual(delta_rb, vec2(push.threshold)));
+		if (edges.x + edges.y == 0.0)
+			return edges;
 		// in colour mode the second ring is measured against the centre
 		delta_far = vec2(colour_delta(c, gamma_colour(p + ivec2(-2, 0))),
 				 colour_delta(c, gamma_colour(p + ivec2(0, -2))));
@@ -80,7 +93,6 @@ void main()
 	ivec2 p = ivec2(gl_FragCoord.xy);
 	last_texel = textureSize(source, 0) - 1;
 	vec2 edges = detect(p);
-	if (edges.x + edges.y == 0.0)
-		discard;
 	out_edges = vec4(edges, 0.0, 0.0);
+	gl_FragDepth = blend_may_run || edges.x + edges.y > 0.0 ? 0.0 : 1.0;
 }

@@ -2,13 +2,17 @@
 // SMAA, before pass 1: the scene's linear colour encoded to sRGB in an RGBA8 target, with the Rec. 709
 // luma of the encoded values in alpha. SMAA's edge thresholds are for gamma-encoded 8-bit input (an sRGB
 // back buffer read through a UNORM view); encoding once here keeps the pow out of the edge pass, which
-// reads up to seven neighbours. The blend pass still reads the linear colour.
+// reads up to seven neighbours. The blend pass still reads the linear colour. The second target gets the
+// linear colour as it is: the blend pass draws only where its mask lets it, into this copy.
 layout(set = 0, binding = 0) uniform sampler2D scene; // linear RGBA16F
 layout(location = 0) out vec4 out_encoded;
+layout(location = 1) out vec4 out_linear;
 
 void main()
 {
-	vec3 c = clamp(texelFetch(scene, ivec2(gl_FragCoord.xy), 0).rgb, 0.0, 1.0);
+	vec4 linear = texelFetch(scene, ivec2(gl_FragCoord.xy), 0);
+	vec3 c = clamp(linear.rgb, 0.0, 1.0);
 	vec3 s = mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 	out_encoded = vec4(s, dot(s, vec3(0.2126, 0.7152, 0.0722)));
+	out_linear = linear;
 }

@@ -88,6 +88,7 @@ static void test_hard_edges(void **state)
 		assert_non_null(find_memory(m, "edges"));
 		assert_non_null(find_memory(m, "blend weights"));
 		assert_non_null(find_memory(m, "edge queue"));
+		assert_non_null(find_memory(m, "blend mask (depth)"));
 		assert_true(m->memory_bytes > r->methods[0].memory_bytes + 160 * 90 * (2 + 4 + 8));
 	}
 	fixture_free(r);
@@ -98,6 +99,7 @@ struct capture {
 	int size;
 	double error[2]; /* mean abs coverage error of none and smaa */
 	double max_change;  /* largest |smaa - none| over the image */
+	int brighter, darker; /* pixels smaa made brighter / darker than none by more than 1e-3 */
 	float *none;
 };
 
@@ -119,6 +121,8 @@ static int on_frame(const struct aa_event *ev, void *user)
 		for (int i = 0; i < n; i++) {
 			double d = fabs(img->pixels[i * 4] - c->none[i]);
 			c->max_change = d > c->max_change ? d : c->max_change;
+			c->brighter += img->pixels[i * 4] > c->none[i] + 1e-3;
+			c->darker += img->pixels[i * 4] < c->none[i] - 1e-3;
 		}
 	return 0;
 }
@@ -178,6 +182,26 @@ static void test_aligned_edge_untouched(void **state)
 	assert_true(c.max_change < 1e-6);
 }
 
+/* The blend pass runs only where the edge pass's mask lets it: the pixels with an edge of their own, and
+ * those left of a vertical edge or above a horizontal one, whose blend reads their neighbour's weights.
+ * A white half-plane on black: SMAA blends across the edge both ways, as many pixels get brighter (the
+ * black side) as darker (the white side); a mask of the edge pixels alone, or one missing the right or
+ * the bottom neighbour, leaves (part of) one side as it was, for a near-vertical or near-horizontal
+ * edge. */
+static void test_blend_reaches_both_sides(void **state)
+{
+	(void)state;
+	const double angles[] = {10.0, 80.0};
+	for (int i = 0; i < 2; i++) {
+		struct capture c = run_half_plane(angles[i]);
+		printf("  half-plane %2.0f deg: %d pixels brighter, %d darker than none\n", angles[i], c.brighter,
+		       c.darker);
+		if (c.brighter < 8 || c.darker < 8 || c.brighter < 0.8 * c.darker || c.darker < 0.8 * c.brighter)
+			fail_msg("%g deg: %d brighter and %d darker pixels: the blend skipped one side of the edge",
+				 angles[i], c.brighter, c.darker);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -185,6 +209,7 @@ int main(void)
 		cmocka_unit_test(test_hard_edges),
 		cmocka_unit_test(test_slanted_edges),
 		cmocka_unit_test(test_aligned_edge_untouched),
+		cmocka_unit_test(test_blend_reaches_both_sides),
 	};
 	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }
