@@ -1,7 +1,8 @@
 #version 450
 // SMAA pass 1, edge detection (notes/smaa.md §2). Writes (left edge, top edge) as 0 or 1 into an RG8
-// target, and the blend mask into depth: 0 where the blend pass may read a non-zero weight, 1 where it
-// surely reads none (then its output is the scene colour, and it need not run there). Luma and colour modes read the sRGB-encoded
+// target cleared to 0, and the blend mask: the triangle's depth 0 over a mask cleared to 1, where the
+// blend pass may read a non-zero weight. It discards the other pixels (no edge, and the blend surely reads
+// no weight there: its output is the scene colour, and it need not run there). Luma and colour modes read the sRGB-encoded
 // colour with its luma in alpha (shaders/smaa_encode.frag); depth mode reads the scene depth. Reads
 // outside the image clamp to the border pixel. A fragment pass, not a compute one: per-pixel compute
 // passes cost several times more on lavapipe.
@@ -31,6 +32,14 @@ float luma(ivec2 p)
 	return fetch(p).a; // Rec. 709 weights on the encoded values
 }
 
+// Luma (alpha) of the 2x2 texels around pixel corner c: x (c.x-1, c.y), y (c.x, c.y), z (c.x, c.y-1),
+// w (c.x-1, c.y-1). The clamp-to-edge sampler clamps them as fetch() does; one gather costs about one
+// texel read on lavapipe.
+vec4 gather_luma(ivec2 c)
+{
+	return textureGather(source, vec2(c) / vec2(last_texel + 1), 3);
+}
+
 float colour_delta(vec3 a, vec3 b)
 {
 	vec3 t = abs(a - b);
@@ -58,9 +67,11 @@ vec2 detect(ivec2 p)
 	// Left and top deltas decide whether there is an edge at all; most pixels stop here.
 	vec2 delta_lt, delta_rb, delta_far;
 	if (EDGE_MODE == 0) {
-		float l = luma(p), l_left = luma(p + ivec2(-1, 0)), l_top = luma(p + ivec2(0, -1));
+		vec4 left_centre_top = gather_luma(p);          // x left, y centre, z top
+		vec4 bottom_right = gather_luma(p + ivec2(1));  // x bottom, z right
+		float l = left_centre_top.y, l_left = left_centre_top.x, l_top = left_centre_top.z;
 		delta_lt = abs(l - vec2(l_left, l_top));
-		delta_rb = abs(l - vec2(luma(p + ivec2(1, 0)), luma(p + ivec2(0, 1))));
+		delta_rb = abs(l - bottom_right.zx);
 		edges = step(vec2(push.threshold), delta_lt);
 		blend_may_run = any(greaterThanEqual(delta_rb, vec2(push.threshold)));
 		if (edges.x + edges.y == 0.0)
@@ -93,6 +104,7 @@ void main()
 	ivec2 p = ivec2(gl_FragCoord.xy);
 	last_texel = textureSize(source, 0) - 1;
 	vec2 edges = detect(p);
+	if (!blend_may_run && edges.x + edges.y == 0.0)
+		discard;
 	out_edges = vec4(edges, 0.0, 0.0);
-	gl_FragDepth = blend_may_run || edges.x + edges.y > 0.0 ? 0.0 : 1.0;
 }

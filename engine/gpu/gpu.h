@@ -132,6 +132,7 @@ struct aa_gpu_graphics_desc {
 	int color_count;
 	uint32_t samples;
 	bool depth_test, depth_write; /* reversed-Z: compare GREATER_OR_EQUAL */
+	bool depth_always;            /* compare ALWAYS instead (a mask drawn over its clear value) */
 	VkCullModeFlags cull;
 	enum aa_blend blend;
 	float depth_bias_constant, depth_bias_slope;

@@ -137,7 +137,7 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 		.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
 		.depthTestEnable = d->depth_test,
 		.depthWriteEnable = d->depth_write,
-		.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, /* reversed-Z */
+		.depthCompareOp = d->depth_always ? VK_COMPARE_OP_ALWAYS : VK_COMPARE_OP_GREATER_OR_EQUAL, /* reversed-Z */
 	};
 	VkPipelineColorBlendAttachmentState cb[AA_GPU_MAX_COLOR];
 	for (int i = 0; i < AA_GPU_MAX_COLOR; i++) {

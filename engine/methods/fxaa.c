@@ -95,7 +95,9 @@ void aa_fxaa_describe(const struct aa_method_params *p, char *out, size_t size)
 	snprintf(out, size, "preset %d, %d search steps", presets[k].preset, presets[k].count);
 }
 
-/* The edge mask's depth format: two values (0 edge, 1 not), the smallest depth format there is. */
+/* The edge mask's depth format: two values (0 edge, 1 not), the smallest depth format there is. The edge
+ * pass clears it to 1 and draws the full-screen triangle's depth 0 (compare ALWAYS) on edge pixels only,
+ * discarding the others: most pixels write nothing. */
 #define EDGE_MASK_FORMAT VK_FORMAT_D16_UNORM
 
 /* A pass of our own (not aa_fullscreen_pass): the edge mask needs a depth attachment. */
@@ -158,7 +160,7 @@ static int fxaa_pass_create(struct aa_method_state *s, struct fxaa_pass *p, cons
 	struct aa_gpu_graphics_desc g = {
 		.vert = "fullscreen.vert", .frag = frag, .vertex_layout = AA_VERTEX_NONE,
 		.render_pass = p->render_pass, .color_count = pd.color_count, .samples = 1,
-		.cull = VK_CULL_MODE_NONE, .depth_test = true, .depth_write = !resolve,
+		.cull = VK_CULL_MODE_NONE, .depth_test = true, .depth_write = !resolve, .depth_always = !resolve,
 		.layout = p->pipeline.layout, .frag_specialization = resolve ? &s->spec.info : NULL,
 	};
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
@@ -203,7 +205,8 @@ static int fxaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 
 static void fxaa_pass_record(struct aa_method_state *s, VkCommandBuffer cmd, struct fxaa_pass *p)
 {
-	VkClearValue clear[2] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.depthStencil = {0.0f, 0}}};
+	/* the edge mask is cleared to 1 ("leave alone"); the edge pass draws the triangle's depth 0 on edges */
+	VkClearValue clear[2] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.depthStencil = {1.0f, 0}}};
 	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, s->r->width, s->r->height,
 			  p == &s->edges ? &clear[1] : clear, p == &s->edges ? 1 : 2);
 	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);

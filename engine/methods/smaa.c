@@ -49,7 +49,9 @@ static const struct smaa_preset {
 
 #define LOCAL_CONTRAST_FACTOR 2.0f /* SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR */
 
-/* The blend mask's depth format: two values (0 blend, 1 keep the copy), the smallest depth format there is. */
+/* The blend mask's depth format: two values (0 blend, 1 keep the copy), the smallest depth format there is.
+ * The edge pass clears it to 1 and draws the full-screen triangle's depth 0 (compare ALWAYS) only where the
+ * blend may change the pixel, discarding the rest: most pixels write nothing. */
 #define BLEND_MASK_FORMAT VK_FORMAT_D16_UNORM
 
 #define QUEUE_TILE 64   /* pixels per side of the 8x8 invocations of a shaders/smaa_queue.comp group */
@@ -187,6 +189,7 @@ static int smaa_pass_create(struct aa_method_state *s, struct smaa_pass *p, cons
 		.vert = "fullscreen.vert", .frag = d->frag, .vertex_layout = AA_VERTEX_NONE,
 		.render_pass = p->render_pass, .color_count = colour_count, .samples = 1,
 		.cull = VK_CULL_MODE_NONE, .depth_test = d->mask != 0, .depth_write = d->mask == 1,
+		.depth_always = d->mask == 1,
 		.layout = p->pipeline.layout, .frag_specialization = d->specialization,
 	};
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
@@ -202,8 +205,11 @@ static int smaa_pass_create(struct aa_method_state *s, struct smaa_pass *p, cons
 static void smaa_pass_record(struct aa_method_state *s, VkCommandBuffer cmd, struct smaa_pass *p,
 			     const void *push, uint32_t push_size)
 {
-	const VkClearValue clear[3] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.color = {.float32 = {0, 0, 0, 0}}},
-				       {.color = {.float32 = {0, 0, 0, 0}}}}; /* all bits 0: depth 0 too */
+	/* colour targets to 0; the blend mask to 1, "keep the copy" (only the edge pass clears it) */
+	VkClearValue clear[3] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.color = {.float32 = {0, 0, 0, 0}}},
+				 {.color = {.float32 = {0, 0, 0, 0}}}};
+	if (p == &s->edge_pass)
+		clear[p->clear_count - 1].depthStencil = (VkClearDepthStencilValue){1.0f, 0};
 	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, s->r->width, s->r->height, clear, p->clear_count);
 	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
 	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
