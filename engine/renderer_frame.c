@@ -82,12 +82,13 @@ static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
 }
 
 /* The shadow cascades for this camera (shadow_fit.c) into the frame uniforms. */
-static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, int light, struct aa_frame_uniforms *u)
+static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, const double eye[3], int light,
+		       struct aa_frame_uniforms *u)
 {
 	const struct aa_scene *s = r->scene;
 	const float *d = s->lights[light].direction;
 	struct aa_shadow_fit_input in = {
-		.camera = *camera, .aspect = (float)r->width / (float)r->height,
+		.camera = *camera, .eye = {eye[0], eye[1], eye[2]}, .aspect = (float)r->width / (float)r->height,
 		.light_direction = v3(d[0], d[1], d[2]), .boxes = r->bounds, .box_count = s->object_count,
 		.tile_size = AA_SHADOW_TILE_SIZE,
 	};
@@ -115,31 +116,51 @@ static void fit_shadow(struct aa_renderer *r, const struct aa_camera *camera, in
 	memcpy(u->shadow_view_proj, r->shadow_view_proj.m, sizeof u->shadow_view_proj);
 }
 
+/* The camera moved to the origin of camera-relative space: world position eye, its target relative to it. */
+static struct aa_camera relative_camera(const struct aa_camera *camera, double eye[3])
+{
+	struct aa_camera c = *camera;
+	aa_camera_eye(camera, eye);
+	c.origin[0] = c.origin[1] = c.origin[2] = 0.0;
+	c.target = v3_sub(camera->target, camera->position); /* both relative to the same origin: exact enough */
+	c.position = v3(0, 0, 0);
+	return c;
+}
+
+/* Camera-relative rendering (docs/architecture.md): what the GPU sees is relative to this frame's eye, with
+ * the subtraction done in double on the CPU (model translations, point lights); the view matrix is a
+ * rotation. The previous frame's model matrices are relative to the previous eye and its view_proj has
+ * no translation either, so velocity compares the two frames without a world-sized number in between. */
 void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera, double t,
 			   const struct aa_camera *prev_camera, double prev_t, struct aa_frame_ctx *ctx)
 {
 	const struct aa_scene *s = r->scene;
-	ctx->camera = *camera;
+	double eye[3], prev_eye[3];
+	struct aa_camera rel = relative_camera(camera, eye);
+	ctx->camera = rel;
 	ctx->time = t;
 	ctx->width = r->width;
 	ctx->height = r->height;
-	ctx->view = mat4_look_at(camera->position, camera->target, camera->up);
-	ctx->proj = camera_projection(camera, r->width, r->height);
+	ctx->view = mat4_look_at(rel.position, rel.target, rel.up);
+	ctx->proj = camera_projection(&rel, r->width, r->height);
 	ctx->view_proj = mat4_mul(ctx->proj, ctx->view);
 	ctx->prev_view_proj = ctx->view_proj;
-	if (prev_camera)
-		ctx->prev_view_proj = mat4_mul(camera_projection(prev_camera, r->width, r->height),
-					       mat4_look_at(prev_camera->position, prev_camera->target, prev_camera->up));
+	memcpy(prev_eye, eye, sizeof prev_eye);
+	if (prev_camera) {
+		struct aa_camera prev_rel = relative_camera(prev_camera, prev_eye);
+		ctx->prev_view_proj = mat4_mul(camera_projection(&prev_rel, r->width, r->height),
+					       mat4_look_at(prev_rel.position, prev_rel.target, prev_rel.up));
+	}
 	mat4 *prev = r->prev_models.mapped; /* by model_id: every part of an object moves as the object */
 	for (int o = 0; o < s->object_count; o++) {
 		const struct aa_object *obj = &s->objects[o];
 		const struct aa_mesh *m = &s->meshes[obj->mesh_index];
-		r->models[o] = aa_object_model_matrix(obj, t);
-		prev[obj->model_id - 1] = prev_camera ? aa_object_model_matrix(obj, prev_t) : r->models[o];
+		r->models[o] = aa_object_model_relative(obj, t, eye);
+		prev[obj->model_id - 1] = aa_object_model_relative(obj, prev_camera ? prev_t : t, prev_eye);
 		r->bounds[o] = aa_box_transform(r->models[o], m->bounds_min, m->bounds_max);
 	}
 	pose_skinned(r, t, prev_camera != NULL, prev_t);
-	sort_blended(r, camera);
+	sort_blended(r, &rel);
 
 	struct aa_frame_uniforms *u = &r->uniforms;
 	memset(u, 0, sizeof *u);
@@ -148,10 +169,8 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	u->camera_planes[0] = camera->near_plane;
 	u->camera_planes[1] = camera->far_plane;
 	u->camera_planes[2] = camera->projection == AA_PROJECTION_ORTHOGRAPHIC ? 1.0f : 0.0f;
-	u->camera_position[0] = camera->position.x;
-	u->camera_position[1] = camera->position.y;
-	u->camera_position[2] = camera->position.z;
-	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
+	/* camera_position stays 0: the shaders' world positions are relative to the eye */
+	vec3 forward = v3_normalize(rel.target);
 	u->camera_forward[0] = forward.x, u->camera_forward[1] = forward.y, u->camera_forward[2] = forward.z;
 	memcpy(u->ambient, s->ambient, 3 * sizeof(float));
 	u->frame_size[0] = (float)r->width;
@@ -160,9 +179,8 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	for (int i = 0; i < s->light_count && i < AA_MAX_LIGHTS; i++) {
 		const struct aa_light *l = &s->lights[i];
 		bool point = l->type == AA_LIGHT_POINT;
-		const float *p = point ? l->position : l->direction;
 		for (int k = 0; k < 3; k++) {
-			u->lights[i].position_type[k] = p[k];
+			u->lights[i].position_type[k] = point ? (float)(l->position[k] - eye[k]) : l->direction[k];
 			u->lights[i].color_range[k] = l->color[k] * l->intensity;
 		}
 		u->lights[i].position_type[3] = point ? 1.0f : 0.0f;
@@ -176,6 +194,6 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	u->counts[1] = shadow_light >= 0;
 	u->counts[2] = r->inject_nonfinite;
 	if (shadow_light >= 0)
-		fit_shadow(r, camera, shadow_light, u);
+		fit_shadow(r, &rel, eye, shadow_light, u);
 	memcpy(r->frame_ubo.mapped, u, sizeof *u);
 }

@@ -154,7 +154,11 @@ void aa_shadow_fit(const struct aa_shadow_fit_input *in, struct aa_shadow_fit *o
 		}
 		radius = fmaxf(radius, 1e-3f);
 		c->texel = 2.0f * radius / (float)in->tile_size;
-		c->center = v3(roundf(center.x / c->texel) * c->texel, roundf(center.y / c->texel) * c->texel, center.z);
+		/* snapped in world light space (eye's light-space position added in double), returned relative */
+		double eye_x = (double)x.x * in->eye[0] + (double)x.y * in->eye[1] + (double)x.z * in->eye[2];
+		double eye_y = (double)y.x * in->eye[0] + (double)y.y * in->eye[1] + (double)y.z * in->eye[2];
+		c->center = v3((float)(round((center.x + eye_x) / c->texel) * c->texel - eye_x),
+			       (float)(round((center.y + eye_y) / c->texel) * c->texel - eye_y), center.z);
 		c->radius = radius;
 		/* depth: just the casters over this window */
 		float zn = -INFINITY, zf = INFINITY;

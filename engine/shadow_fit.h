@@ -19,10 +19,13 @@ struct aa_box {
 };
 
 struct aa_shadow_fit_input {
+	/* Camera-relative (docs/architecture.md): the camera and boxes are relative to eye, the camera's world
+	 * position; eye only places the texel grid, which stays fixed in the world as the camera moves. */
 	struct aa_camera camera;
+	double eye[3];
 	float aspect;            /* width / height of the frame */
 	vec3 light_direction;    /* where the light travels (normalised) */
-	const struct aa_box *boxes; /* world boxes of what is drawn: receivers, and casters */
+	const struct aa_box *boxes; /* boxes of what is drawn (relative to eye): receivers, and casters */
 	int box_count;
 	int tile_size;           /* texels per side of each cascade's map */
 };

@@ -38,9 +38,13 @@ static int read_camera_fields(struct sj *s, const json_t *obj, const struct aa_c
 	if (base)
 		d = *base;
 	int proj;
+	/* position and target in double, kept relative to the scene camera's origin (struct aa_camera) */
+	double def_position[3] = {d.origin[0] + d.position.x, d.origin[1] + d.position.y, d.origin[2] + d.position.z};
+	double def_target[3] = {d.origin[0] + d.target.x, d.origin[1] + d.target.y, d.origin[2] + d.target.z};
+	double position[3], target[3];
 	if ((need_position && (sj_require(s, obj, "position") || sj_require(s, obj, "target"))) ||
-	    sj_vec3(s, obj, "position", SJ_ANY, d.position, &out->position) ||
-	    sj_vec3(s, obj, "target", SJ_ANY, d.target, &out->target) ||
+	    sj_dvec3(s, obj, "position", SJ_ANY, def_position, position) ||
+	    sj_dvec3(s, obj, "target", SJ_ANY, def_target, target) ||
 	    sj_vec3(s, obj, "up", SJ_CLOSED(-1e3, 1e3), d.up, &out->up) ||
 	    sj_enum(s, obj, "projection", projections, (int)d.projection, &proj) ||
 	    sj_float(s, obj, "fov", SJ_CLOSED(1, 179), d.fov_y_degrees, &out->fov_y_degrees) ||
@@ -49,6 +53,12 @@ static int read_camera_fields(struct sj *s, const json_t *obj, const struct aa_c
 	    sj_float(s, obj, "far", SJ_CLOSED(1e-3, 1e7), d.far_plane, &out->far_plane))
 		return -1;
 	out->projection = (enum aa_projection)proj;
+	for (int k = 0; k < 3; k++)
+		out->origin[k] = base ? base->origin[k] : 1024.0 * round(position[k] / 1024.0);
+	out->position = v3((float)(position[0] - out->origin[0]), (float)(position[1] - out->origin[1]),
+			   (float)(position[2] - out->origin[2]));
+	out->target = v3((float)(target[0] - out->origin[0]), (float)(target[1] - out->origin[1]),
+			 (float)(target[2] - out->origin[2]));
 	if (v3_length(out->up) < 1e-6f)
 		return sj_fail_key(s, "up", AA_ERR_INVALID, "up must not be zero");
 	out->up = v3_normalize(out->up);
@@ -142,10 +152,14 @@ static int read_path(struct sj *s, const json_t *o, const struct aa_camera *came
 	}
 	double def_duration = p->kind == AA_PATH_STATIC ? 0.0 : p->kind == AA_PATH_ORBIT ? 10.0 : 4.0;
 	struct sj_range dr = p->kind == AA_PATH_STATIC ? SJ_CLOSED(0, 1e6) : SJ_CLOSED(1e-3, 1e6);
+	const struct aa_camera *c = &p->keys[0].camera;
+	double def_center[3] = {c->origin[0] + c->target.x, c->origin[1] + c->target.y, c->origin[2] + c->target.z};
+	double center[3];
 	if (sj_number(s, o, "duration", dr, def_duration, &p->duration) ||
-	    sj_vec3(s, o, "center", SJ_ANY, p->keys[0].camera.target, &p->center) ||
+	    sj_dvec3(s, o, "center", SJ_ANY, def_center, center) ||
 	    sj_float(s, o, "degrees", SJ_CLOSED(-36000, 36000), p->kind == AA_PATH_ORBIT ? 360.0f : 30.0f, &p->degrees))
 		return -1;
+	p->center = v3((float)(center[0] - c->origin[0]), (float)(center[1] - c->origin[1]), (float)(center[2] - c->origin[2]));
 	if (p->kind == AA_PATH_DOLLY &&
 	    (sj_require(s, o, "distance") || sj_float(s, o, "distance", SJ_CLOSED(-1e5, 1e5), 0, &p->distance)))
 		return -1;

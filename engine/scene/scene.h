@@ -135,7 +135,7 @@ enum aa_light_type { AA_LIGHT_DIRECTIONAL = 0, AA_LIGHT_POINT = 1 };
 struct aa_light {
 	enum aa_light_type type;
 	float direction[3]; /* directional: direction the light travels (normalized) */
-	float position[3];  /* point */
+	double position[3]; /* point, world (double, as aa_object.origin) */
 	float color[3];     /* linear */
 	float intensity;
 	float range;        /* point: distance at which it falls to zero (smooth window), 0 = inverse square only */
@@ -151,7 +151,7 @@ struct aa_animation {
 	float oscillate_frequency;
 	float spin_axis[3];
 	float spin_degrees_per_second;
-	float pivot[3];         /* spin pivot, world space */
+	float pivot[3];         /* spin pivot, relative to the object's origin */
 };
 
 /* A rig: the node hierarchy of a mesh file, the joints its skinned parts use, and its animations. Posed
@@ -202,7 +202,10 @@ struct aa_object {
 	char name[AA_NAME_MAX];
 	int mesh_index;
 	int material_index;
-	mat4 transform;         /* base model matrix at t = 0 */
+	/* World position, in double: in floats a position 600,000 units out is a multiple of 1/16 unit. The
+	 * renderer subtracts the camera's position from it in double (camera-relative rendering). */
+	double origin[3];
+	mat4 transform;         /* base model matrix at t = 0, relative to origin (rotation and scale) */
 	struct aa_animation animation;
 	struct aa_pose pose;    /* skinned or animated mesh parts (mesh->rig >= 0) */
 	uint32_t model_id;      /* 1-based, the scene file's object index + 1: all parts of an object share it */
@@ -210,7 +213,11 @@ struct aa_object {
 
 enum aa_projection { AA_PROJECTION_PERSPECTIVE = 0, AA_PROJECTION_ORTHOGRAPHIC = 1 };
 
+/* position and target are relative to origin (double), so that a camera far from the world's origin keeps
+ * float precision: origin is the scene camera's position rounded to a multiple of 1024 units (0 for a
+ * camera within 512 units of the origin) and every camera and path of the scene shares it. */
 struct aa_camera {
+	double origin[3];
 	vec3 position, target, up;
 	enum aa_projection projection;
 	float fov_y_degrees;    /* perspective */
@@ -238,7 +245,7 @@ struct aa_camera_path {
 	double duration;        /* seconds; beyond it the path holds its end (keyframes) or wraps (orbit) */
 	struct aa_camera_key *keys; /* keyframes; for named kinds, keys[0] is the start camera */
 	int key_count;
-	vec3 center;            /* orbit */
+	vec3 center;            /* orbit, relative to keys[0].camera.origin */
 	float degrees;          /* orbit: degrees over `duration`; pan: yaw over `duration` */
 	float distance;         /* dolly */
 	float catmull_alpha;    /* keyframes: 0.5 centripetal (default), 0 uniform Catmull-Rom */
@@ -307,6 +314,11 @@ void aa_camera_path_eval(const struct aa_camera_path *path, bool hold_first, dou
 
 /* Model matrix of an object at time t (base transform with its animation applied). */
 mat4 aa_object_model_matrix(const struct aa_object *object, double t);
+/* The same relative to eye (world, double): its translation is origin + motion - eye, taken in double
+ * before it becomes a float, so that it keeps float precision near the camera wherever the world is. */
+mat4 aa_object_model_relative(const struct aa_object *object, double t, const double eye[3]);
+/* A camera's world position (origin + position) in double. */
+void aa_camera_eye(const struct aa_camera *camera, double eye[3]);
 bool aa_scene_has_animation(const struct aa_scene *scene); /* objects move or skinned parts are animated */
 bool aa_object_is_animated(const struct aa_scene *scene, const struct aa_object *object);
 bool aa_scene_has_cutout(const struct aa_scene *scene);   /* some object draws with a cut-out material */

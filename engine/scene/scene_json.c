@@ -393,6 +393,21 @@ int sj_vec3(struct sj *s, const json_t *obj, const char *key, struct sj_range r,
 	return 0;
 }
 
+/* As sj_vec3 in double: world positions, which floats would round to 1/16 unit at 600,000 (the
+ * renderer subtracts the camera's position from them before they become floats). */
+int sj_dvec3(struct sj *s, const json_t *obj, const char *key, struct sj_range r, const double def[3], double out[3])
+{
+	const json_t *v = json_object_get(obj, key);
+	if (!v) {
+		out[0] = def[0], out[1] = def[1], out[2] = def[2];
+		return 0;
+	}
+	size_t mark = sj_push_key(s, key);
+	int rc = numbers_value(s, v, 3, false, r, out);
+	sj_pop(s, mark);
+	return rc;
+}
+
 int sj_floats_or_scalar(struct sj *s, const json_t *obj, const char *key, int n, struct sj_range r,
 			const float *def, float *out)
 {

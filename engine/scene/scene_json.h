@@ -71,6 +71,7 @@ int sj_string(struct sj *s, const json_t *obj, const char *key, const char *def,
 int sj_enum(struct sj *s, const json_t *obj, const char *key, const char *const *names, int def, int *out);
 int sj_vec3(struct sj *s, const json_t *obj, const char *key, struct sj_range r, vec3 def, vec3 *out);
 /* The value at the current path (an array element, say) as [x, y, z]. */
+int sj_dvec3(struct sj *s, const json_t *obj, const char *key, struct sj_range r, const double def[3], double out[3]);
 int sj_vec3_value(struct sj *s, const json_t *v, struct sj_range r, vec3 *out);
 /* A number (used for all components) or an array of n numbers. */
 int sj_floats_or_scalar(struct sj *s, const json_t *obj, const char *key, int n, struct sj_range r,

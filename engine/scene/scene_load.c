@@ -414,14 +414,15 @@ static int object_clip(struct loader *L, const json_t *a, int mesh, struct aa_po
 	return sj_fail_key(s, "clip", AA_ERR_INVALID, "unknown animation '%s' (the mesh file has: %s)", name, list);
 }
 
-static int object_animation(struct loader *L, const json_t *a, vec3 position, int mesh, struct aa_animation *an,
+static int object_animation(struct loader *L, const json_t *a, const double position[3], int mesh, struct aa_animation *an,
 			    struct aa_pose *pose)
 {
 	static const char *const keys[] = {"velocity", "oscillate", "spin", "clip", "time", "speed", NULL};
 	static const char *const osc_keys[] = {"axis", "amplitude", "frequency", NULL};
 	static const char *const spin_keys[] = {"axis", "degrees_per_second", "pivot", NULL};
 	struct sj *s = &L->s;
-	vec3 zero = v3(0, 0, 0), axis, velocity, pivot = position;
+	vec3 zero = v3(0, 0, 0), axis, velocity;
+	double pivot[3] = {position[0], position[1], position[2]};
 	if (sj_check_keys(s, a, keys) || sj_vec3(s, a, "velocity", SJ_CLOSED(-1e4, 1e4), zero, &velocity) ||
 	    object_clip(L, a, mesh, pose))
 		return -1;
@@ -445,15 +446,16 @@ static int object_animation(struct loader *L, const json_t *a, vec3 position, in
 		if (sj_check_keys(s, spin, spin_keys) || sj_vec3(s, spin, "axis", SJ_CLOSED(-1e3, 1e3), v3(0, 1, 0), &axis) ||
 		    sj_require(s, spin, "degrees_per_second") ||
 		    sj_float(s, spin, "degrees_per_second", SJ_CLOSED(-1e6, 1e6), 0, &an->spin_degrees_per_second) ||
-		    sj_vec3(s, spin, "pivot", SJ_ANY, position, &pivot))
+		    sj_dvec3(s, spin, "pivot", SJ_ANY, position, pivot))
 			return -1;
 		if (v3_length(axis) < 1e-6f)
 			return sj_fail_key(s, "axis", AA_ERR_INVALID, "axis must not be zero");
 		set3(an->spin_axis, v3_normalize(axis));
 		sj_pop(s, mark);
 	}
-	/* The spin pivot defaults to the object's position, so objects spin in place. */
-	set3(an->pivot, pivot);
+	/* The spin pivot defaults to the object's position, so objects spin in place; it is kept relative to
+	 * that position (the object's origin), which is small in floats wherever the object is. */
+	set3(an->pivot, v3((float)(pivot[0] - position[0]), (float)(pivot[1] - position[1]), (float)(pivot[2] - position[2])));
 	an->active = v3_length(velocity) > 0 || (an->oscillate_amplitude > 0 && an->oscillate_frequency > 0) ||
 		     an->spin_degrees_per_second != 0;
 	return 0;
@@ -499,13 +501,14 @@ static int read_object(struct loader *L, const json_t *o, int index)
 	struct sj *s = &L->s;
 	struct aa_object obj = {.pose = {.clip = -1}};
 	char def_name[32];
-	vec3 pos, rot;
+	vec3 rot;
+	double pos[3];
 	float scale[3];
 	int mesh, override;
 	snprintf(def_name, sizeof def_name, "object%d", index);
 	if (sj_check_keys(s, o, keys) || sj_string(s, o, "name", def_name, obj.name, sizeof obj.name) ||
 	    sj_require(s, o, "mesh") || object_material(L, o, &override) || object_mesh(L, o, &mesh) ||
-	    sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &pos) ||
+	    sj_dvec3(s, o, "position", SJ_ANY, (const double[3]){0, 0, 0}, pos) ||
 	    sj_vec3(s, o, "rotation", SJ_CLOSED(-3600, 3600), v3(0, 0, 0), &rot) ||
 	    sj_floats_or_scalar(s, o, "scale", 3, SJ_CLOSED(1e-4, 1e5), one, scale))
 		return -1;
@@ -513,7 +516,9 @@ static int read_object(struct loader *L, const json_t *o, int index)
 	const float d2r = 3.14159265358979f / 180.0f;
 	mat4 r = mat4_mul(mat4_rotate(v3(0, 0, 1), rot.z * d2r),
 			  mat4_mul(mat4_rotate(v3(0, 1, 0), rot.y * d2r), mat4_rotate(v3(1, 0, 0), rot.x * d2r)));
-	obj.transform = mat4_mul(mat4_translate(pos), mat4_mul(r, mat4_scale(v3(scale[0], scale[1], scale[2]))));
+	/* The position stays in double (obj.origin); the float matrix holds what is relative to it. */
+	obj.origin[0] = pos[0], obj.origin[1] = pos[1], obj.origin[2] = pos[2];
+	obj.transform = mat4_mul(r, mat4_scale(v3(scale[0], scale[1], scale[2])));
 	obj.model_id = (uint32_t)index + 1;
 	const json_t *anim = json_object_get(o, "animation");
 	if (anim) {
@@ -586,9 +591,8 @@ static int read_light(struct sj *s, const json_t *o, struct aa_light *l, int *sh
 		v = v3_normalize(v);
 		l->direction[0] = v.x, l->direction[1] = v.y, l->direction[2] = v.z;
 	} else {
-		if (sj_require(s, o, "position") || sj_vec3(s, o, "position", SJ_ANY, v3(0, 0, 0), &v))
+		if (sj_require(s, o, "position") || sj_dvec3(s, o, "position", SJ_ANY, (const double[3]){0, 0, 0}, l->position))
 			return -1;
-		l->position[0] = v.x, l->position[1] = v.y, l->position[2] = v.z;
 		/* Shadow maps are rendered for directional lights only. */
 		if (l->casts_shadow)
 			return sj_fail_key(s, "casts_shadow", AA_ERR_INVALID, "only directional lights can cast shadows");

@@ -14,23 +14,40 @@ static vec3 f3(const float a[3])
 
 mat4 aa_object_model_matrix(const struct aa_object *object, double t)
 {
+	static const double world_origin[3] = {0, 0, 0};
+	return aa_object_model_relative(object, t, world_origin);
+}
+
+mat4 aa_object_model_relative(const struct aa_object *object, double t, const double eye[3])
+{
 	const struct aa_animation *a = &object->animation;
-	if (!a->active || !isfinite(t))
-		return object->transform;
-	/* Phases are reduced in double before going to float so long runs stay smooth. */
-	double phase = fmod((double)a->oscillate_frequency * t, 1.0);
-	float osc = a->oscillate_amplitude * (float)sin(2.0 * 3.14159265358979323846 * phase);
-	vec3 move = v3_add(v3_scale(f3(a->velocity), (float)t), v3_scale(f3(a->oscillate_axis), osc));
+	double move[3] = {0, 0, 0};
 	mat4 m = object->transform;
-	if (a->spin_degrees_per_second != 0.0f) {
-		double deg = fmod((double)a->spin_degrees_per_second * t, 360.0);
-		vec3 pivot = f3(a->pivot);
-		mat4 spin = mat4_mul(mat4_translate(pivot),
-				     mat4_mul(mat4_rotate(f3(a->spin_axis), (float)(deg * 3.14159265358979323846 / 180.0)),
-					      mat4_translate(v3_scale(pivot, -1.0f))));
-		m = mat4_mul(spin, m);
+	if (a->active && isfinite(t)) {
+		/* Phases are reduced in double before going to float so long runs stay smooth. */
+		double phase = fmod((double)a->oscillate_frequency * t, 1.0);
+		double osc = a->oscillate_amplitude * sin(2.0 * 3.14159265358979323846 * phase);
+		for (int k = 0; k < 3; k++)
+			move[k] = (double)a->velocity[k] * t + (double)a->oscillate_axis[k] * osc;
+		if (a->spin_degrees_per_second != 0.0f) {
+			double deg = fmod((double)a->spin_degrees_per_second * t, 360.0);
+			vec3 pivot = f3(a->pivot);
+			mat4 spin = mat4_mul(mat4_translate(pivot),
+					     mat4_mul(mat4_rotate(f3(a->spin_axis), (float)(deg * 3.14159265358979323846 / 180.0)),
+						      mat4_translate(v3_scale(pivot, -1.0f))));
+			m = mat4_mul(spin, m);
+		}
 	}
-	return mat4_mul(mat4_translate(move), m);
+	vec3 offset = v3((float)(object->origin[0] + move[0] - eye[0]), (float)(object->origin[1] + move[1] - eye[1]),
+			 (float)(object->origin[2] + move[2] - eye[2]));
+	return mat4_mul(mat4_translate(offset), m);
+}
+
+void aa_camera_eye(const struct aa_camera *camera, double eye[3])
+{
+	eye[0] = camera->origin[0] + camera->position.x;
+	eye[1] = camera->origin[1] + camera->position.y;
+	eye[2] = camera->origin[2] + camera->position.z;
 }
 
 bool aa_object_is_animated(const struct aa_scene *scene, const struct aa_object *object)
