@@ -72,6 +72,56 @@ static void test_stable_under_subtexel_motion(void **state)
 		assert_true(fb.cascades[i].radius == fa.cascades[i].radius);
 }
 
+/* Camera-relative (docs/architecture.md): the same view fitted relative to the eye (camera at 0, boxes moved
+ * by -eye, eye given) is the world fit moved by the eye's light-space position: the same sizes and splits,
+ * and centres on the same world-fixed texel grid, so the map does not shimmer as the eye moves. */
+static void test_camera_relative_fit(void **state)
+{
+	(void)state;
+	vec3 eye = v3(-1.5f, 1.1f, 190);
+	struct aa_camera world = camera_at(eye, v3(-0.5f, -5.5f, 150));
+	struct aa_camera rel = camera_at(v3(0, 0, 0), v3_sub(world.target, eye));
+	struct aa_box moved[4];
+	for (int k = 0; k < 4; k++)
+		moved[k] = (struct aa_box){v3_sub(field[k].min, eye), v3_sub(field[k].max, eye)};
+	struct aa_shadow_fit fw, fr;
+	fit(world, &fw, field, 4);
+	struct aa_shadow_fit_input in = {.camera = rel, .eye = {eye.x, eye.y, eye.z}, .aspect = 16.0f / 9.0f,
+					 .light_direction = v3_normalize(v3(-0.3f, -1.0f, 0.2f)), .boxes = moved,
+					 .box_count = 4, .tile_size = AA_SHADOW_TILE_SIZE};
+	aa_shadow_fit(&in, &fr);
+	assert_int_equal(fr.cascade_count, fw.cascade_count);
+	vec3 eye_light = mat4_transform_point(fw.light_view, eye);
+	for (int i = 0; i < fw.cascade_count; i++) {
+		const struct aa_shadow_cascade *cw = &fw.cascades[i], *cr = &fr.cascades[i];
+		assert_true(cw->radius == cr->radius && cw->texel == cr->texel);
+		for (int k = 0; k < 2; k++) {
+			float apart = ((&cr->center.x)[k] + (&eye_light.x)[k] - (&cw->center.x)[k]) / cw->texel;
+			if (fabsf(apart) > 1e-2f)
+				fail_msg("cascade %d: the relative fit's centre is %g texels off the world fit's along %c", i,
+					 apart, "xy"[k]);
+		}
+		/* sub-texel eye motion: the centre, in the world, moves by whole texels */
+		double eye2[3] = {eye.x + 0.3 * cw->texel, eye.y, eye.z - 0.3 * cw->texel};
+		struct aa_shadow_fit_input in2 = in;
+		memcpy(in2.eye, eye2, sizeof eye2);
+		struct aa_box moved2[4];
+		vec3 d = v3((float)(eye2[0] - eye.x), 0, (float)(eye2[2] - eye.z));
+		for (int b = 0; b < 4; b++)
+			moved2[b] = (struct aa_box){v3_sub(moved[b].min, d), v3_sub(moved[b].max, d)};
+		in2.boxes = moved2;
+		struct aa_shadow_fit f2;
+		aa_shadow_fit(&in2, &f2);
+		vec3 eye2_light = mat4_transform_point(fw.light_view, v3((float)eye2[0], (float)eye2[1], (float)eye2[2]));
+		for (int k = 0; k < 2; k++) {
+			float shift = ((&f2.cascades[i].center.x)[k] + (&eye2_light.x)[k] - (&cr->center.x)[k] -
+				       (&eye_light.x)[k]) / cw->texel;
+			if (fabsf(shift - roundf(shift)) > 1e-2f)
+				fail_msg("cascade %d moved by %g texels along %c when the eye moved", i, shift, "xy"[k]);
+		}
+	}
+}
+
 /* Each cascade's window holds its slice of the view frustum; the first is much finer than one map over
  * the whole field; the depth range holds the casters over the window and no more. */
 static void test_cascades_cover_the_view(void **state)
@@ -212,6 +262,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stable_under_subtexel_motion),
 		cmocka_unit_test(test_cascades_cover_the_view),
+		cmocka_unit_test(test_camera_relative_fit),
 		cmocka_unit_test(test_small_scene_uses_fewer_cascades),
 		cmocka_unit_test(test_plan_reasons),
 	};
