@@ -20,7 +20,7 @@ if "--shadow" in extras:
         if light["type"] == "directional":
             light["casts_shadow"] = True
 if "--point-light" in extras:
-    scene["lights"].append({"type": "point", "position": [1.0, 1.5, 0.5], "color": "#FFD0A0", "intensity": 3.0})
+    scene["lights"].append({"type": "point", "position": [0.0, 1.2, -0.6], "color": "#FFD0A0", "intensity": 10.0})
 if "--spin" in extras:
     for o in scene["objects"]:
         if o["name"].startswith("crate"):
