@@ -15,6 +15,7 @@
 
 #define AA_MAX_METHODS 16
 #define AA_MAX_PASSES 16
+#define AA_MAX_INVALID_TARGETS 8 /* per frame, the intermediates with invalid texels that are named */
 #define AA_MAX_MEMORY_ITEMS 16
 #define AA_MAX_WARNINGS 32         /* as AA_SCENE_MAX_WARNINGS */
 #define AA_LABEL_MAX 128
@@ -87,6 +88,8 @@ struct aa_job_spec {
 	bool reference_auto;
 	double reference_target_psnr;
 	bool verdicts;             /* job key "verdicts": judge every case and method (docs/hard-cases.md) */
+	bool debug_targets;        /* job key "debug_targets": read back every intermediate image of every
+				    * method after each frame and count its non-finite texels (engine/debug_targets.c) */
 };
 
 /* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
@@ -158,6 +161,12 @@ struct aa_frame_result {
 				    * R, G or B, below -1/1024): a verdict of docs/hard-cases.md */
 	double change, ref_change; /* mean |m[t] - m[t-1]| and |r[t] - r[t-1]| (8-bit sRGB, R,G,B); NAN at
 				    * frame 0: the "stuck" verdict */
+	/* job option debug_targets only (0 otherwise): the method's intermediate images read back after this
+	 * frame, the texels among them with a NaN/Inf channel (depth: also outside [0, 1]), and which images */
+	int targets_read;
+	long intermediate_invalid;
+	int invalid_target_count;
+	struct aa_target_count { char name[48]; long texels; } invalid_targets[AA_MAX_INVALID_TARGETS];
 };
 
 /* One timed render of a method's frame: the scored one (repeat 0) or a re-timing (timing.repeat). */

@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "aa.h"
+#include "debug_targets.h"
 #include "engine_internal.h"
 #include "frame_plan.h"
 #include "reference/reference.h"
@@ -87,6 +88,7 @@ struct job_state {
 	struct aa_image_rgba8 ref8, half8, out8, diff8, flip8;
 	struct aa_image_rgba8 prev_ref8, prev_out8[AA_MAX_METHODS]; /* the previous frame, for flicker */
 	struct aa_job_result *result;
+	struct aa_debug_targets *debug_targets; /* job option debug_targets, else NULL */
 };
 
 static void job_state_free(struct job_state *js)
@@ -98,6 +100,9 @@ static void job_state_free(struct job_state *js)
 			js->spec->methods[i].method->destroy(js->twins[i]);
 	}
 	aa_reference_destroy(&js->reference);
+	if (js->renderer)
+		js->renderer->debug_targets = NULL;
+	aa_debug_targets_destroy(js->debug_targets);
 	if (js->renderer) {
 		aa_gpu_buffer_destroy(&js->engine->gpu, &js->readback);
 		aa_gpu_timer_destroy(&js->engine->gpu, &js->timer);
@@ -160,6 +165,12 @@ static int setup(struct job_state *js, struct aa_error *err)
 	    aa_gpu_timer_create(gpu, &js->timer, err) ||
 	    aa_reference_create(js->renderer, spec->reference_samples, &js->reference, err))
 		return -1;
+	/* after the reference: only the methods' images are entered, each under its method's index */
+	if (spec->debug_targets) {
+		if (aa_debug_targets_create(gpu, &js->debug_targets, err))
+			return -1;
+		js->renderer->debug_targets = js->debug_targets;
+	}
 
 	res->spec = *spec;
 	snprintf(res->scene_name, sizeof res->scene_name, "%s", js->scene->name);
@@ -193,7 +204,12 @@ static int setup(struct job_state *js, struct aa_error *err)
 		m->timed = calloc((size_t)spec->frames * (size_t)spec->timing_repeat, sizeof *m->timed);
 		if (!m->frames || !m->timed)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
-		if (aa_method_create(ms->method, js->renderer, &ms->params, m, &js->states[i], err)) {
+		if (js->debug_targets)
+			js->debug_targets->owner = i;
+		int failed_create = aa_method_create(ms->method, js->renderer, &ms->params, m, &js->states[i], err);
+		if (js->debug_targets)
+			js->debug_targets->owner = -1; /* the twin's images are never read back */
+		if (failed_create) {
 			aa_error_prefix(err, "%s", ms->label);
 			if (!err->path[0]) /* the job field at fault (a user method's shader that does not compile) */
 				snprintf(err->path, sizeof err->path, "methods[%d]", i);
@@ -316,7 +332,12 @@ static int timed_render(struct job_state *js, int i, struct aa_method_state *sta
 	}
 	ctx->timer = &js->timer;
 	ctx->output = NULL;
-	if (method->render(state, ctx, err) || !ctx->output || ctx->output->width != ctx->width ||
+	if (js->debug_targets) /* an image a method makes while rendering is entered too (not the twin's) */
+		js->debug_targets->owner = state == js->states[i] ? i : -1;
+	int failed_render = method->render(state, ctx, err);
+	if (js->debug_targets)
+		js->debug_targets->owner = -1;
+	if (failed_render || !ctx->output || ctx->output->width != ctx->width ||
 	    ctx->output->height != ctx->height ||
 	    (ctx->output->format != VK_FORMAT_R16G16B16A16_SFLOAT &&
 	     ctx->output->format != VK_FORMAT_R32G32B32A32_SFLOAT) ||
@@ -375,6 +396,11 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 	*t = (struct aa_timed_render){.ordinal = ctx->ordinal, .repeat = 0, .position = position};
 	if (timed_render(js, i, js->states[i], ctx, t, err))
 		return -1;
+	/* after the timed submission, in its own: the readback never shows in the method's times */
+	if (aa_debug_targets_check(js->debug_targets, i, fr, err)) {
+		aa_error_prefix(err, "%s (debug_targets readback)", js->spec->methods[i].label);
+		return -1;
+	}
 	mr->timed_count = ctx->ordinal * js->spec->timing_repeat + 1;
 	fr->cpu_ms = t->cpu_ms;
 	fr->frame = ctx->frame;

@@ -15,7 +15,7 @@
 
 static const char *const job_keys[] = { "scene", "path", "size", "width", "height", "frames", "first_frame",
 					"reference", "methods", "keep_frames", "linear_frames", "exr_frames", "viewer", "over_threshold", "name", "timing",
-					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", "verdicts", NULL };
+					"suite", "scenes", "paths", "sizes", "cases", "labels", "baseline", "shard", "verdicts", "debug_targets", NULL };
 static const char *const timing_keys[] = { "repeat", NULL };
 static const char *const shard_keys[] = { "warmup", NULL };
 static const char *const reference_keys[] = { "samples", "target_psnr", "max_samples", NULL };
@@ -556,6 +556,11 @@ static int parse_job(const json_t *job, const struct aa_file_source *files, stru
 			return bad(err, AA_ERR_INVALID, "viewer", "expected true or false, got %s", type_name(v));
 		s.viewer = json_is_true(v);
 	}
+	if ((v = json_object_get(job, "debug_targets"))) {
+		if (!json_is_boolean(v))
+			return bad(err, AA_ERR_INVALID, "debug_targets", "expected true or false, got %s", type_name(v));
+		s.debug_targets = json_is_true(v);
+	}
 	if ((v = json_object_get(job, "over_threshold"))) {
 		if (!json_is_number(v) || !(json_number_value(v) >= 0.0 && json_number_value(v) <= 1.0))
 			return bad(err, AA_ERR_INVALID, "over_threshold", "expected a number from 0 to 1 (a share of full "
@@ -610,6 +615,8 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 		json_object_set_new(job, "exr_frames", json_true());
 	if (job && !spec->viewer)
 		json_object_set_new(job, "viewer", json_false());
+	if (job && spec->debug_targets)
+		json_object_set_new(job, "debug_targets", json_true());
 	if (job && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT)
 		json_object_set_new(job, "over_threshold", json_real(spec->over_threshold));
 	return job;

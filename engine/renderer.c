@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "debug_targets.h"
 #include "gpu/sample_positions.h"
 #include "renderer.h"
 
@@ -25,10 +26,11 @@ int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, in
 			     VkFormat format, VkImageUsageFlags usage, const char *name,
 			     struct aa_method_result *info, struct aa_error *err)
 {
+	usage = aa_debug_targets_usage(r->debug_targets, format, usage, 1);
 	if (aa_gpu_image_create(r->gpu, img, width, height, format, usage, 1, 1, err))
 		return -1;
 	aa_method_result_add_memory(info, name, img->bytes);
-	return 0;
+	return aa_debug_targets_add(r->debug_targets, img, usage, name, err);
 }
 
 /* The shadow map, or a 1x1 cleared stand-in so the descriptor is always valid. */
@@ -577,10 +579,11 @@ static int target_image(struct aa_renderer *r, struct aa_gpu_image *img, int wid
 {
 	char label[48];
 	snprintf(label, sizeof label, "%s %s", name, what);
+	usage = aa_debug_targets_usage(r->debug_targets, format, usage, samples);
 	if (aa_gpu_image_create(r->gpu, img, width, height, format, usage, samples, 1, err))
 		return -1;
 	aa_method_result_add_memory(info, label, img->bytes);
-	return 0;
+	return aa_debug_targets_add(r->debug_targets, img, usage, label, err);
 }
 
 int aa_scene_target_create_desc(struct aa_renderer *r, struct aa_scene_target *t, int width, int height,

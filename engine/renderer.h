@@ -12,6 +12,8 @@
 #include "scene_upload.h"
 #include "shadow_fit.h"
 
+struct aa_debug_targets;
+
 #define AA_MAX_LIGHTS 8
 #define AA_SCENE_COLOR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
 #define AA_DEPTH_FORMAT VK_FORMAT_D32_SFLOAT
@@ -183,6 +185,8 @@ struct aa_renderer {
 	mat4 *joint_matrices;            /* scratch, the largest rig's joints */
 	struct aa_vertex *skin_scratch;  /* scratch, the largest skinned part's vertices */
 	bool inject_nonfinite;           /* stability tests: the next set_frame poisons some pixels */
+	struct aa_debug_targets *debug_targets; /* job option debug_targets: the images made here are entered
+						 * (engine/debug_targets.h); NULL when off */
 };
 
 int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const struct aa_scene_upload *upload,

@@ -11,6 +11,8 @@
 
 #include "../error.h"
 
+struct aa_gpu_image;
+
 struct aa_gpu {
 	VkInstance instance;
 	VkPhysicalDevice physical;
@@ -28,6 +30,10 @@ struct aa_gpu {
 	VkSampleCountFlags color_sample_counts; /* supported for RGBA16F + D32F attachments */
 	char driver_info[256];
 	VkSampler sampler_nearest, sampler_linear, sampler_linear_clamp, sampler_shadow;
+	/* called by aa_gpu_image_destroy before an image goes (job option debug_targets: its registry
+	 * forgets the image); NULL otherwise */
+	void (*image_destroyed)(void *user, const struct aa_gpu_image *img);
+	void *image_destroyed_user;
 };
 
 /* device_select: NULL/"" = first device (or $AALAB_DEVICE), a decimal index, or a substring of the

@@ -105,6 +105,8 @@ void aa_gpu_image_destroy(struct aa_gpu *gpu, struct aa_gpu_image *img)
 {
 	if (!gpu->device)
 		return;
+	if (gpu->image_destroyed)
+		gpu->image_destroyed(gpu->image_destroyed_user, img);
 	if (img->view)
 		vkDestroyImageView(gpu->device, img->view, NULL);
 	if (img->image)

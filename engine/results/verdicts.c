@@ -64,7 +64,8 @@ void aa_verdict_judge(const struct aa_job_result *c, int mi, struct aa_verdict *
 	double worst_ratio = INFINITY;
 	for (int f = 0; f < m->frame_count; f++) {
 		const struct aa_frame_result *fr = &m->frames[f];
-		nonfinite += fr->nonfinite;
+		/* with job option debug_targets also what the method's intermediates held (0 without it) */
+		nonfinite += fr->nonfinite + fr->intermediate_invalid;
 		out_of_range += fr->out_of_range;
 		/* stuck: the reference moved by at least 1/255 on average and the method by a tenth of that */
 		if (isfinite(fr->ref_change) && fr->ref_change >= AA_VERDICT_STUCK_MIN_CHANGE && isfinite(fr->change)) {

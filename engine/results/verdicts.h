@@ -8,7 +8,7 @@
 #include "../farm.h"
 
 enum aa_verdict_kind {
-	AA_VERDICT_FINITE,  /* no NaN/Inf in any frame's float output */
+	AA_VERDICT_FINITE,  /* no NaN/Inf in any frame's float output (debug_targets: nor in an intermediate) */
 	AA_VERDICT_RANGE,   /* no negative R, G or B (below -1/1024) in any frame */
 	AA_VERDICT_STUCK,   /* not stuck: it changes at least STUCK_RATIO as much as the reference does */
 	AA_VERDICT_DRIFT,   /* static path where nothing moves (the reference is reused), >= 16 frames: the last

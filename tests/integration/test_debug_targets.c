@@ -1,0 +1,113 @@
+/* Job option debug_targets (issue 17): every intermediate image of a method is read back after each frame.
+ * taa filters NaN/Inf out of what it blends (its output stays finite when the scene pass is poisoned), so
+ * only the readback of its intermediates shows that its scene target held them; a clean run reads the
+ * same targets and finds none; the `finite` verdict counts what the readback found. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "aa.h"
+#include "fixture.h"
+#include "results/verdicts.h"
+
+#define FRAMES 3
+#define POISONED_FRAME 1
+
+static const char *const methods[] = {"taa"};
+
+static struct aa_job_result *run(bool debug_targets, bool poison)
+{
+	struct aa_job_spec spec;
+	fixture_spec(&spec, "thin-wires", methods, 1, 64, 36, FRAMES, 4);
+	snprintf(spec.path, sizeof spec.path, "static");
+	spec.debug_targets = debug_targets;
+	spec.inject_nonfinite_frame = poison ? POISONED_FRAME : -1;
+	return fixture_run(&spec, NULL, NULL, NULL);
+}
+
+static enum aa_verdict_state finite_verdict(const struct aa_job_result *r)
+{
+	struct aa_verdict v;
+	aa_verdict_judge(r, 0, &v);
+	return v.state[AA_VERDICT_FINITE];
+}
+
+/* Without the option the poisoned frame goes unnoticed: the output is finite and nothing is read back. */
+static void test_option_off_sees_only_the_output(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = run(false, true);
+	for (int f = 0; f < FRAMES; f++) {
+		const struct aa_frame_result *fr = &r->methods[0].frames[f];
+		assert_int_equal(fr->nonfinite, 0);
+		assert_int_equal(fr->targets_read, 0);
+		assert_int_equal(fr->intermediate_invalid, 0);
+	}
+	assert_int_equal(finite_verdict(r), AA_VERDICT_PASS);
+	fixture_free(r);
+}
+
+/* With it the poisoned frame's scene target is named, the output is still finite, and the frame after
+ * (history included) is clean again. */
+static void test_option_on_catches_the_intermediate(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = run(true, true);
+	for (int f = 0; f < FRAMES; f++) {
+		const struct aa_frame_result *fr = &r->methods[0].frames[f];
+		printf("  frame %d: %d targets read, %ld invalid texels, output %ld NaN/Inf", f, fr->targets_read,
+		       fr->intermediate_invalid, fr->nonfinite);
+		for (int k = 0; k < fr->invalid_target_count; k++)
+			printf(", %s: %ld", fr->invalid_targets[k].name, fr->invalid_targets[k].texels);
+		printf("\n");
+		assert_int_equal(fr->nonfinite, 0);
+		assert_true(fr->targets_read >= 2); /* the scene target's colour and taa's history at least */
+		if (f != POISONED_FRAME) {
+			assert_int_equal(fr->intermediate_invalid, 0);
+			assert_int_equal(fr->invalid_target_count, 0);
+			continue;
+		}
+		assert_true(fr->intermediate_invalid > 0);
+		assert_true(fr->invalid_target_count >= 1);
+		bool scene_colour = false;
+		long named = 0;
+		for (int k = 0; k < fr->invalid_target_count; k++) {
+			scene_colour |= strstr(fr->invalid_targets[k].name, "colour") != NULL;
+			named += fr->invalid_targets[k].texels;
+		}
+		assert_true(scene_colour);
+		assert_int_equal(named, fr->intermediate_invalid);
+		/* the poison pattern is 2 pixels of every 11: no more than that share of a target */
+		assert_true(fr->intermediate_invalid <= (long)fr->invalid_target_count * (2 * 64 * 36 / 11 + 36));
+	}
+	assert_int_equal(finite_verdict(r), AA_VERDICT_FAIL);
+	fixture_free(r);
+}
+
+/* A clean run reads every target back and finds nothing. */
+static void test_clean_run_reports_zero(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = run(true, false);
+	for (int f = 0; f < FRAMES; f++) {
+		const struct aa_frame_result *fr = &r->methods[0].frames[f];
+		assert_true(fr->targets_read >= 2);
+		assert_int_equal(fr->intermediate_invalid, 0);
+		assert_int_equal(fr->nonfinite, 0);
+	}
+	assert_int_equal(finite_verdict(r), AA_VERDICT_PASS);
+	fixture_free(r);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_option_off_sees_only_the_output),
+		cmocka_unit_test(test_option_on_catches_the_intermediate),
+		cmocka_unit_test(test_clean_run_reports_zero),
+	};
+	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+}
