@@ -57,6 +57,10 @@ const char aa_run_help[] =
 	"                          viewer/, the frames again as scripts (~1.3x their disk; job field viewer)\n"
 	"  --exr                   also write every frame's linear colour as float EXR, exr/METHOD/NNNN.exr\n"
 	"                          (for oiiotool, idiff, tev; job field exr_frames)\n"
+	"  --debug-targets         after every frame read back each method's intermediate images (scene\n"
+	"                          targets, histories, edge and blend targets) and count their NaN/Inf\n"
+	"                          texels: results.json frames[].intermediates, the finite verdict (job\n"
+	"                          field debug_targets; slower)\n"
 	"  --json                  print results.json to standard output instead of the table\n"
 	"  --quiet                 no progress display\n"
 	"  --local                 run in this process even when aalabd is running\n"
@@ -117,14 +121,15 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 int cmd_run(int argc, char **argv)
 {
 	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD, OPT_EXR,
-	       OPT_NO_VIEWER };
+	       OPT_NO_VIEWER, OPT_DEBUG_TARGETS };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
 		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP},
 		{"force", no_argument, 0, OPT_FORCE}, {"shard", required_argument, 0, OPT_SHARD},
-		{"exr", no_argument, 0, OPT_EXR}, {"no-viewer", no_argument, 0, OPT_NO_VIEWER}, {0, 0, 0, 0},
+		{"exr", no_argument, 0, OPT_EXR}, {"no-viewer", no_argument, 0, OPT_NO_VIEWER},
+		{"debug-targets", no_argument, 0, OPT_DEBUG_TARGETS}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
 	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
@@ -152,6 +157,7 @@ int cmd_run(int argc, char **argv)
 		case OPT_SHARD: shard_text = optarg; break;
 		case OPT_EXR: exr = true; break;
 		case OPT_NO_VIEWER: json_object_set_new(overrides, "viewer", json_false()); break;
+		case OPT_DEBUG_TARGETS: json_object_set_new(overrides, "debug_targets", json_true()); break;
 		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(aa_run_help, stderr); goto out;
 		}

@@ -218,6 +218,19 @@ static json_t *frame_json(struct builder *b, const struct aa_job_result *r, cons
 	put(b, obj, "out_of_range", json_integer(f->out_of_range));
 	put(b, obj, "change", num(f->change));
 	put(b, obj, "reference_change", num(f->ref_change));
+	if (r->spec.debug_targets) { /* job option debug_targets: the method's intermediates after this frame */
+		json_t *in = json_object(), *bad = json_array();
+		put(b, in, "targets_read", json_integer(f->targets_read));
+		put(b, in, "invalid_texels", json_integer(f->intermediate_invalid));
+		for (int k = 0; k < f->invalid_target_count && k < AA_MAX_INVALID_TARGETS; k++) {
+			json_t *t = json_object();
+			put(b, t, "name", str(f->invalid_targets[k].name));
+			put(b, t, "invalid_texels", json_integer(f->invalid_targets[k].texels));
+			push(b, bad, t);
+		}
+		put(b, in, "invalid_targets", bad);
+		put(b, obj, "intermediates", in);
+	}
 	put(b, obj, "image", image_path(r, "frames", m->label, ordinal));
 	put(b, obj, "diff", image_path(r, "diff", m->label, ordinal));
 	put(b, obj, "flip_map", image_path(r, "flip", m->label, ordinal));

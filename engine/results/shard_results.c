@@ -169,6 +169,19 @@ static int read_frames(const json_t *jm, const char *path, int first_frame, int 
 		f->out_of_range = (long)json_integer_value(json_object_get(item, "out_of_range"));
 		f->change = jnum(item, "change");
 		f->ref_change = jnum(item, "reference_change");
+		const json_t *in = json_object_get(item, "intermediates"); /* job option debug_targets */
+		if (in) {
+			f->targets_read = (int)json_integer_value(json_object_get(in, "targets_read"));
+			f->intermediate_invalid = (long)json_integer_value(json_object_get(in, "invalid_texels"));
+			const json_t *bad = json_object_get(in, "invalid_targets"), *t;
+			json_array_foreach(bad, k, t) {
+				if (k >= AA_MAX_INVALID_TARGETS)
+					break;
+				jstr(t, "name", f->invalid_targets[k].name, sizeof f->invalid_targets[k].name);
+				f->invalid_targets[k].texels = (long)json_integer_value(json_object_get(t, "invalid_texels"));
+				f->invalid_target_count = (int)k + 1;
+			}
+		}
 	}
 	m->frame_count = frames;
 	snprintf(where, sizeof where, "%s.timed_renders", path);
