@@ -105,13 +105,12 @@ static bool float_invalid(float f, bool depth)
 	return !isfinite(f) || (depth && (f < 0.0f || f > 1.0f));
 }
 
-/* Texels of one read-back image with a non-finite channel (or, for depth, a value outside [0, 1]). */
-static long count_invalid(const void *data, const struct aa_gpu_image *img)
+long aa_debug_targets_count_invalid(const void *data, VkFormat format, int width, int height)
 {
 	bool half;
-	const int channels = float_channels(img->format, &half);
-	const bool depth = img->format == VK_FORMAT_D32_SFLOAT;
-	const size_t texels = (size_t)img->width * img->height;
+	const int channels = float_channels(format, &half);
+	const bool depth = format == VK_FORMAT_D32_SFLOAT;
+	const size_t texels = (size_t)width * height;
 	long n = 0;
 	for (size_t i = 0; i < texels; i++) {
 		bool bad = false;
@@ -191,7 +190,8 @@ int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_fram
 		const struct aa_debug_target *t = &d->targets[i];
 		if (t->owner != owner || t->img->image != t->image || t->img->layout == VK_IMAGE_LAYOUT_UNDEFINED)
 			continue;
-		const long bad = count_invalid((const char *)d->readback.mapped + offset, t->img);
+		const long bad = aa_debug_targets_count_invalid((const char *)d->readback.mapped + offset,
+								t->img->format, t->img->width, t->img->height);
 		offset += (image_bytes(t->img) + 3) & ~(VkDeviceSize)3;
 		fr->targets_read++;
 		fr->intermediate_invalid += bad;

@@ -37,6 +37,9 @@ VkImageUsageFlags aa_debug_targets_usage(const struct aa_debug_targets *d, VkFor
 /* Enters img under name for the current owner (d NULL, owner -1 or an unwanted kind: nothing). */
 int aa_debug_targets_add(struct aa_debug_targets *d, struct aa_gpu_image *img, VkImageUsageFlags usage,
 			 const char *name, struct aa_error *err);
+/* Texels of tightly packed data of this format with a NaN/Inf channel (D32F: also outside [0, 1]); 0 for
+ * a format that is not checked. */
+long aa_debug_targets_count_invalid(const void *data, VkFormat format, int width, int height);
 /* Reads back every written image of method `owner` in one submission and fills fr's intermediate counts. */
 int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_frame_result *fr, struct aa_error *err);
 

@@ -9,3 +9,10 @@ tests_integration_test_debug_targets_SOURCES = tests/integration/test_debug_targ
 tests_integration_test_debug_targets_CFLAGS = $(TEST_CFLAGS)
 tests_integration_test_debug_targets_LDADD = $(TEST_LIBS)
 TESTS += tests/integration/test_debug_targets
+
+# the count itself, on hand-made half, float and depth texels
+check_PROGRAMS += tests/unit/test_debug_targets_count
+tests_unit_test_debug_targets_count_SOURCES = tests/unit/test_debug_targets_count.c
+tests_unit_test_debug_targets_count_CFLAGS = $(TEST_CFLAGS)
+tests_unit_test_debug_targets_count_LDADD = $(TEST_LIBS)
+TESTS += tests/unit/test_debug_targets_count

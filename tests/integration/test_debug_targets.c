@@ -11,6 +11,7 @@
 
 #include "aa.h"
 #include "fixture.h"
+#include "results/results.h"
 #include "results/verdicts.h"
 
 #define FRAMES 3
@@ -26,6 +27,14 @@ static struct aa_job_result *run(bool debug_targets, bool poison)
 	spec.debug_targets = debug_targets;
 	spec.inject_nonfinite_frame = poison ? POISONED_FRAME : -1;
 	return fixture_run(&spec, NULL, NULL, NULL);
+}
+
+/* results.json's frames[f].intermediates of the job's one method, or NULL (the caller frees *root). */
+static json_t *intermediates_json(const struct aa_job_result *r, int f, json_t **root)
+{
+	*root = aa_results_to_json(r);
+	json_t *method = json_array_get(json_object_get(*root, "methods"), 0);
+	return json_object_get(json_array_get(json_object_get(method, "frames"), (size_t)f), "intermediates");
 }
 
 static enum aa_verdict_state finite_verdict(const struct aa_job_result *r)
@@ -47,6 +56,9 @@ static void test_option_off_sees_only_the_output(void **state)
 		assert_int_equal(fr->intermediate_invalid, 0);
 	}
 	assert_int_equal(finite_verdict(r), AA_VERDICT_PASS);
+	json_t *root;
+	assert_null(intermediates_json(r, POISONED_FRAME, &root)); /* results.json has no intermediates */
+	json_decref(root);
 	fixture_free(r);
 }
 
@@ -84,6 +96,16 @@ static void test_option_on_catches_the_intermediate(void **state)
 		assert_true(fr->intermediate_invalid <= (long)fr->invalid_target_count * (2 * 64 * 36 / 11 + 36));
 	}
 	assert_int_equal(finite_verdict(r), AA_VERDICT_FAIL);
+	/* results.json says the same: the count and the target's name */
+	const struct aa_frame_result *fr = &r->methods[0].frames[POISONED_FRAME];
+	json_t *root, *in = intermediates_json(r, POISONED_FRAME, &root);
+	assert_non_null(in);
+	assert_int_equal(json_integer_value(json_object_get(in, "targets_read")), fr->targets_read);
+	assert_int_equal(json_integer_value(json_object_get(in, "invalid_texels")), fr->intermediate_invalid);
+	json_t *first = json_array_get(json_object_get(in, "invalid_targets"), 0);
+	assert_string_equal(json_string_value(json_object_get(first, "name")), fr->invalid_targets[0].name);
+	assert_int_equal(json_integer_value(json_object_get(first, "invalid_texels")), fr->invalid_targets[0].texels);
+	json_decref(root);
 	fixture_free(r);
 }
 
