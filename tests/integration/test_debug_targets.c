@@ -17,12 +17,14 @@
 #define FRAMES 3
 #define POISONED_FRAME 1
 
-static const char *const methods[] = {"taa"};
+/* taa-sobel's sobel targets are R16F images whose layout the readback must give back as it found it */
+static const char *const methods[] = {"taa", "taa-sobel"};
+#define METHODS 2
 
 static struct aa_job_result *run(bool debug_targets, bool poison)
 {
 	struct aa_job_spec spec;
-	fixture_spec(&spec, "thin-wires", methods, 1, 64, 36, FRAMES, 4);
+	fixture_spec(&spec, "thin-wires", methods, METHODS, 64, 36, FRAMES, 4);
 	snprintf(spec.path, sizeof spec.path, "static");
 	spec.debug_targets = debug_targets;
 	spec.inject_nonfinite_frame = poison ? POISONED_FRAME : -1;
@@ -33,7 +35,7 @@ static struct aa_job_result *run(bool debug_targets, bool poison)
 	return r;
 }
 
-/* results.json's frames[f].intermediates of the job's one method, or NULL (the caller frees *root). */
+/* results.json's frames[f].intermediates of the job's first method, or NULL (the caller frees *root). */
 static json_t *intermediates_json(const struct aa_job_result *r, int f, json_t **root)
 {
 	*root = aa_results_to_json(r);
@@ -41,10 +43,10 @@ static json_t *intermediates_json(const struct aa_job_result *r, int f, json_t *
 	return json_object_get(json_array_get(json_object_get(method, "frames"), (size_t)f), "intermediates");
 }
 
-static enum aa_verdict_state finite_verdict(const struct aa_job_result *r)
+static enum aa_verdict_state finite_verdict(const struct aa_job_result *r, int m)
 {
 	struct aa_verdict v;
-	aa_verdict_judge(r, 0, &v);
+	aa_verdict_judge(r, m, &v);
 	return v.state[AA_VERDICT_FINITE];
 }
 
@@ -53,34 +55,34 @@ static void test_option_off_sees_only_the_output(void **state)
 {
 	(void)state;
 	struct aa_job_result *r = run(false, true);
-	for (int f = 0; f < FRAMES; f++) {
-		const struct aa_frame_result *fr = &r->methods[0].frames[f];
-		assert_int_equal(fr->nonfinite, 0);
-		assert_int_equal(fr->targets_read, 0);
-		assert_int_equal(fr->intermediate_invalid, 0);
+	for (int m = 0; m < METHODS; m++) {
+		for (int f = 0; f < FRAMES; f++) {
+			const struct aa_frame_result *fr = &r->methods[m].frames[f];
+			assert_int_equal(fr->nonfinite, 0);
+			assert_int_equal(fr->targets_read, 0);
+			assert_int_equal(fr->intermediate_invalid, 0);
+		}
+		assert_int_equal(finite_verdict(r, m), AA_VERDICT_PASS);
 	}
-	assert_int_equal(finite_verdict(r), AA_VERDICT_PASS);
 	json_t *root;
 	assert_null(intermediates_json(r, POISONED_FRAME, &root)); /* results.json has no intermediates */
 	json_decref(root);
 	fixture_free(r);
 }
 
-/* With it the poisoned frame's scene target is named, the output is still finite, and the frame after
- * (history included) is clean again. */
-static void test_option_on_catches_the_intermediate(void **state)
+/* Method m of a poisoned run with the option on: its scene target is named in the poisoned frame only,
+ * and its output is finite throughout. */
+static void check_poisoned(const struct aa_job_result *r, int m)
 {
-	(void)state;
-	struct aa_job_result *r = run(true, true);
 	for (int f = 0; f < FRAMES; f++) {
-		const struct aa_frame_result *fr = &r->methods[0].frames[f];
-		printf("  frame %d: %d targets read, %ld invalid texels, output %ld NaN/Inf", f, fr->targets_read,
-		       fr->intermediate_invalid, fr->nonfinite);
+		const struct aa_frame_result *fr = &r->methods[m].frames[f];
+		printf("  %s frame %d: %d targets read, %ld invalid texels, output %ld NaN/Inf", methods[m], f,
+		       fr->targets_read, fr->intermediate_invalid, fr->nonfinite);
 		for (int k = 0; k < fr->invalid_target_count; k++)
 			printf(", %s: %ld", fr->invalid_targets[k].name, fr->invalid_targets[k].texels);
 		printf("\n");
 		assert_int_equal(fr->nonfinite, 0);
-		assert_true(fr->targets_read >= 2); /* the scene target's colour and taa's history at least */
+		assert_true(fr->targets_read >= 2); /* the scene target's colour and the history at least */
 		if (f != POISONED_FRAME) {
 			assert_int_equal(fr->intermediate_invalid, 0);
 			assert_int_equal(fr->invalid_target_count, 0);
@@ -99,7 +101,17 @@ static void test_option_on_catches_the_intermediate(void **state)
 		/* the poison pattern is 2 pixels of every 11: no more than that share of a target */
 		assert_true(fr->intermediate_invalid <= (long)fr->invalid_target_count * (2 * 64 * 36 / 11 + 36));
 	}
-	assert_int_equal(finite_verdict(r), AA_VERDICT_FAIL);
+	assert_int_equal(finite_verdict(r, m), AA_VERDICT_FAIL);
+}
+
+/* With it the poisoned frame's scene target is named, the output is still finite, and the frame after
+ * (history included) is clean again. */
+static void test_option_on_catches_the_intermediate(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = run(true, true);
+	for (int m = 0; m < METHODS; m++)
+		check_poisoned(r, m);
 	/* results.json says the same: the count and the target's name */
 	const struct aa_frame_result *fr = &r->methods[0].frames[POISONED_FRAME];
 	json_t *root, *in = intermediates_json(r, POISONED_FRAME, &root);
@@ -118,13 +130,15 @@ static void test_clean_run_reports_zero(void **state)
 {
 	(void)state;
 	struct aa_job_result *r = run(true, false);
-	for (int f = 0; f < FRAMES; f++) {
-		const struct aa_frame_result *fr = &r->methods[0].frames[f];
-		assert_true(fr->targets_read >= 2);
-		assert_int_equal(fr->intermediate_invalid, 0);
-		assert_int_equal(fr->nonfinite, 0);
+	for (int m = 0; m < METHODS; m++) {
+		for (int f = 0; f < FRAMES; f++) {
+			const struct aa_frame_result *fr = &r->methods[m].frames[f];
+			assert_true(fr->targets_read >= 2);
+			assert_int_equal(fr->intermediate_invalid, 0);
+			assert_int_equal(fr->nonfinite, 0);
+		}
+		assert_int_equal(finite_verdict(r, m), AA_VERDICT_PASS);
 	}
-	assert_int_equal(finite_verdict(r), AA_VERDICT_PASS);
 	fixture_free(r);
 }
 
