@@ -24,6 +24,12 @@ static = [it for it in items if it["case"].startswith("specular-aliasing/static"
 assert all(it["verdicts"]["drift"]["state"] == "pass" for it in static), static
 moving = [it for it in items if it["case"].startswith("hdr-fireflies")]
 assert all(it["verdicts"]["drift"]["state"] == "n/a" for it in moving), moving
+# "debug_targets": true reaches every case: each method's intermediates were read back and held no NaN/Inf
+for c in r["cases"]:
+    for m in c["methods"]:
+        for f in m["frames"]:
+            i = f["intermediates"]
+            assert i["targets_read"] >= 1 and i["invalid_texels"] == 0 and i["invalid_targets"] == [], (c["id"], m["label"], i)
 ms = {m["label"] for m in r["cases"][0]["methods"]}
 assert "ssaa:4,tonemapped_resolve=true" in ms and "msaa:4,tonemapped_resolve=true" in ms, ms
 PY
