@@ -9,6 +9,7 @@
 #include "fixture.h"
 
 struct aa_engine *fixture_engine;
+static int validation_failures; /* set by fixture_teardown, read by fixture_status */
 
 int fixture_setup(void **state)
 {
@@ -27,9 +28,16 @@ int fixture_teardown(void **state)
 	(void)state;
 	int errors = aa_engine_validation_errors(fixture_engine);
 	aa_engine_destroy(fixture_engine);
-	if (errors)
+	if (errors) {
 		fprintf(stderr, "%d Vulkan validation errors\n", errors);
+		validation_failures++;
+	}
 	return errors ? -1 : 0;
+}
+
+int fixture_status(int cmocka_status)
+{
+	return cmocka_status || validation_failures ? 1 : 0;
 }
 
 void fixture_spec(struct aa_job_spec *spec, const char *scene, const char *const *methods, int n, int width,

@@ -247,5 +247,5 @@ int main(void)
 		cmocka_unit_test(test_paths_agree_on_cutout_fence),
 		cmocka_unit_test(test_every_method_reports_its_rule),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

@@ -195,5 +195,5 @@ int main(void)
 		cmocka_unit_test(test_half_planes),
 		cmocka_unit_test(test_thin_bar),
 	};
-	return cmocka_run_group_tests(tests, setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, setup, fixture_teardown));
 }

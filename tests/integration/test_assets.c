@@ -540,5 +540,5 @@ int main(void)
 		cmocka_unit_test(test_every_method),
 		cmocka_unit_test(test_horizon_shadows),
 	};
-	return cmocka_run_group_tests(tests, setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, setup, fixture_teardown));
 }

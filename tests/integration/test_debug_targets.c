@@ -149,5 +149,5 @@ int main(void)
 		cmocka_unit_test(test_option_on_catches_the_intermediate),
 		cmocka_unit_test(test_clean_run_reports_zero),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

@@ -251,5 +251,5 @@ int main(void)
 		cmocka_unit_test(test_every_scene_every_method_finite),
 		cmocka_unit_test(test_uploaded_scene_is_reused),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

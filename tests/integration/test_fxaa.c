@@ -293,5 +293,5 @@ int main(void)
 		cmocka_unit_test(test_fxaa_half_plane_coverage),
 		cmocka_unit_test(test_fxaa_cs_matches_fxaa),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

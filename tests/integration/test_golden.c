@@ -243,5 +243,5 @@ int main(void)
 		cmocka_unit_test(test_reference_reuse),
 		cmocka_unit_test(test_every_scene_every_method),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

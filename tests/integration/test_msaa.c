@@ -324,5 +324,5 @@ int main(void)
 		cmocka_unit_test(test_paths_agree_on_slivers),
 		cmocka_unit_test(test_msaa_beats_none_on_checker_box),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

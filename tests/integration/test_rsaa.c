@@ -154,5 +154,5 @@ int main(void)
 		cmocka_unit_test(test_every_mix_runs),
 		cmocka_unit_test(test_dense_detail_stays_in_range),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

@@ -211,5 +211,5 @@ int main(void)
 		cmocka_unit_test(test_aligned_edge_untouched),
 		cmocka_unit_test(test_blend_reaches_both_sides),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

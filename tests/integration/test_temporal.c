@@ -337,5 +337,5 @@ int main(void)
 		cmocka_unit_test(test_hdr_teleport),
 		cmocka_unit_test(test_taa_parameters),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

@@ -221,5 +221,5 @@ int main(void)
 		cmocka_unit_test(test_feedback_order),
 		cmocka_unit_test(test_golden_file),
 	};
-	return cmocka_run_group_tests(tests, setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, setup, fixture_teardown));
 }

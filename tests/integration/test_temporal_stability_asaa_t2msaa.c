@@ -297,5 +297,5 @@ int main(void)
 		cmocka_unit_test(test_far_surface_accumulates),
 		cmocka_unit_test(test_still_camera_long_run),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

@@ -113,5 +113,5 @@ int main(void)
 		cmocka_unit_test(test_repeat_counts_every_render),
 		cmocka_unit_test(test_repeats_leave_history_alone),
 	};
-	return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
+	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }

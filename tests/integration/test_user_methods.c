@@ -270,5 +270,5 @@ int main(void)
 		cmocka_unit_test(test_compile_error),
 		cmocka_unit_test(test_repeat_keeps_history),
 	};
-	return cmocka_run_group_tests(tests, setup, teardown);
+	return fixture_status(cmocka_run_group_tests(tests, setup, teardown));
 }
