@@ -71,3 +71,13 @@ layout(push_constant) uniform Draw {
 	uint object_id;
 	vec2 jitter_ndc;        // sub-pixel jitter added after projection (clip.xy += jitter * clip.w)
 } draw;
+
+// A point's shadow coordinates: its position in the shadow light's space (xyz) and its view depth (w), which
+// picks the cascade. Both are affine in the world position (an orthographic light), so the vertex shaders
+// compute them and the rasterizer's interpolation is exact; per fragment they cost a mat4 and a dot
+// product (docs/architecture.md, "The scene pass").
+vec4 shadow_coordinates(vec3 world)
+{
+	return vec4((frame.shadow_light_view * vec4(world, 1.0)).xyz,
+		    dot(world - frame.camera_position.xyz, frame.camera_forward.xyz));
+}

@@ -14,6 +14,7 @@ layout(location = 3) noperspective in vec3 in_edge_distance;
 layout(location = 4) flat in vec3 in_edge_vertical;
 layout(location = 8) in vec4 in_tangent;
 layout(location = 9) in vec4 in_color;
+layout(location = 10) in vec4 in_shadow; // shadow_coordinates(): light space, view depth
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_edge_offset;
@@ -25,7 +26,7 @@ void main()
 	vec4 base = surface_color_vertex(m, in_uv, uv_dx, uv_dy, in_color);
 	if (ALPHA_TEST && base.a < m.shading.z)
 		discard;
-	Surface s = Surface(in_world, in_normal, in_tangent, in_uv, uv_dx, uv_dy, gl_FrontFacing);
+	Surface s = Surface(in_world, in_shadow, in_normal, in_tangent, in_uv, uv_dx, uv_dy, gl_FrontFacing);
 	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 	int nearest = 0;
 	for (int e = 1; e < 3; e++)

@@ -20,6 +20,7 @@ layout(location = 4) in vec4 in_prev_clip;
 layout(location = 5) in vec3 in_barycentric; // virtual samples only
 layout(location = 8) in vec4 in_tangent;
 layout(location = 9) in vec4 in_color;
+layout(location = 10) in vec4 in_shadow; // shadow_coordinates(): light space, view depth
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_velocity;
@@ -31,6 +32,7 @@ layout(location = 5) out vec2 out_surface;
 void main()
 {
 	vec3 world = in_world, normal = in_normal;
+	vec4 shadow = in_shadow;
 	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
 	vec4 clip = in_clip, prev_clip = in_prev_clip;
 	vec4 tangent = in_tangent, vertex_color = in_color;
@@ -44,6 +46,7 @@ void main()
 			tangent = at_shading_point(in_tangent, sp.offset);
 		if (!GEOMETRY_AT_SAMPLE) {
 			world = at_shading_point(in_world, sp.offset);
+			shadow = at_shading_point(in_shadow, sp.offset);
 			normal = at_shading_point(in_normal, sp.offset);
 			clip = at_shading_point(in_clip, sp.offset);
 			prev_clip = at_shading_point(in_prev_clip, sp.offset);
@@ -58,7 +61,7 @@ void main()
 		if (ALPHA_TO_COVERAGE && (alpha_coverage(base.a) & (1u << max(sp.own_sample, 0))) == 0u)
 			discard;
 	}
-	Surface s = Surface(world, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
+	Surface s = Surface(world, shadow, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
 	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 	// pixels moved since the previous frame; w floors keep points at the eye finite
 	vec2 ndc = clip.xy / max(abs(clip.w), 1e-6);

@@ -18,6 +18,7 @@ layout(location = 4) out vec4 out_prev_clip;
 layout(location = 5) out vec3 out_barycentric; // virtual_sample_gbuffer.geom writes the real ones
 layout(location = 8) out vec4 out_tangent;
 layout(location = 9) out vec4 out_color;
+layout(location = 10) out vec4 out_shadow; // shadow_coordinates(): light space, view depth
 
 // Skinned parts (posed on the CPU each frame): their previous positions, at the same index as this frame's
 // vertices, so that velocity follows the joints (engine/renderer.c).
@@ -31,6 +32,7 @@ void main()
 	vec4 world = draw.model * vec4(in_position, 1.0);
 	mat3 nm = mat3(draw.normal_matrix[0].xyz, draw.normal_matrix[1].xyz, draw.normal_matrix[2].xyz);
 	out_world = world.xyz;
+	out_shadow = shadow_coordinates(world.xyz);
 	out_normal = nm * in_normal;
 	out_uv = in_uv;
 	out_tangent = vec4(mat3(draw.model) * in_tangent.xyz, in_tangent.w);

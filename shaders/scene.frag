@@ -14,6 +14,7 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec3 in_barycentric; // virtual samples only (virtual_sample.geom)
 layout(location = 8) in vec4 in_tangent;
 layout(location = 9) in vec4 in_color;
+layout(location = 10) in vec4 in_shadow; // shadow_coordinates(): light space, view depth
 
 layout(location = 0) out vec4 out_color;
 
@@ -22,11 +23,13 @@ void main()
 	// MSAA targets (hardware or virtual samples) shade and alpha-test once per pixel and triangle, at the
 	// shading point; texture gradients stay those of the pixel (a moved uv has none that mean anything).
 	vec3 world = in_world, normal = in_normal;
+	vec4 shadow = in_shadow;
 	vec2 uv = in_uv, uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
 	vec4 tangent = in_tangent, vertex_color = in_color;
 	ShadingPoint sp = shading_point(in_barycentric);
 	if (SHADING_POINT_MODE != SHADING_POINT_FRAGMENT) {
 		world = at_shading_point(in_world, sp.offset);
+		shadow = at_shading_point(in_shadow, sp.offset);
 		normal = at_shading_point(in_normal, sp.offset);
 		uv = at_shading_point(in_uv, sp.offset);
 		uv_gradients_at(in_uv, sp.centre, uv_dx, uv_dy);
@@ -48,6 +51,6 @@ void main()
 			gl_SampleMask[0] = int(kept);
 		}
 	}
-	Surface s = Surface(world, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
+	Surface s = Surface(world, shadow, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);
 	out_color = vec4(shade(m, base, s), MATERIAL_BLEND ? base.a : 1.0);
 }

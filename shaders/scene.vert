@@ -15,13 +15,15 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 3) out vec3 out_barycentric; // virtual_sample.geom writes the real ones
 layout(location = 8) out vec4 out_tangent;     // normal maps
-layout(location = 9) out vec4 out_color;       // vertex colours
+layout(location = 9) out vec4 out_color;
+layout(location = 10) out vec4 out_shadow; // shadow_coordinates(): light space, view depth       // vertex colours
 
 void main()
 {
 	vec4 world = draw.model * vec4(in_position, 1.0);
 	mat3 nm = mat3(draw.normal_matrix[0].xyz, draw.normal_matrix[1].xyz, draw.normal_matrix[2].xyz);
 	out_world = world.xyz;
+	out_shadow = shadow_coordinates(world.xyz);
 	out_normal = nm * in_normal;
 	out_uv = in_uv;
 	out_tangent = vec4(mat3(draw.model) * in_tangent.xyz, in_tangent.w);

@@ -95,22 +95,22 @@ vec4 surface_color(Material m, vec2 uv)
 	return surface_color_grad(m, uv, dFdx(uv), dFdy(uv));
 }
 
-float shadow_visibility(vec3 world, float ndotl)
+float shadow_visibility(vec4 shadow, float ndotl)
 {
 	// The cascade of this point's view depth; its scale and offset picked by selects, not by an index that
-	// varies per fragment (which llvmpipe gathers per lane, docs/architecture.md).
-	vec3 light = (frame.shadow_light_view * vec4(world, 1.0)).xyz;
-	float depth = dot(world - frame.camera_position.xyz, frame.camera_forward.xyz);
-	int cascade = int(depth > frame.shadow_splits.x) + int(depth > frame.shadow_splits.y) +
-		      int(depth > frame.shadow_splits.z);
-	vec4 scale = frame.shadow_cascade_scale[0], offset = frame.shadow_cascade_offset[0];
-	scale = cascade == 1 ? frame.shadow_cascade_scale[1] : scale;
-	offset = cascade == 1 ? frame.shadow_cascade_offset[1] : offset;
-	scale = cascade == 2 ? frame.shadow_cascade_scale[2] : scale;
-	offset = cascade == 2 ? frame.shadow_cascade_offset[2] : offset;
-	scale = cascade == 3 ? frame.shadow_cascade_scale[3] : scale;
-	offset = cascade == 3 ? frame.shadow_cascade_offset[3] : offset;
-	vec3 ndc = light * scale.xyz + offset.xyz;
+	// varies per fragment (which llvmpipe gathers per lane, docs/architecture.md). The splits increase, so
+	// each test past a split overrides the ones before. Only what differs between cascades is selected:
+	// x and y share one scale, and the half-texel uv margin (scale.w) is the same for all.
+	vec3 light = shadow.xyz;
+	bool past1 = shadow.w > frame.shadow_splits.x, past2 = shadow.w > frame.shadow_splits.y,
+	     past3 = shadow.w > frame.shadow_splits.z;
+	vec2 scale = past1 ? frame.shadow_cascade_scale[1].xz : frame.shadow_cascade_scale[0].xz;
+	vec4 offset = past1 ? frame.shadow_cascade_offset[1] : frame.shadow_cascade_offset[0];
+	scale = past2 ? frame.shadow_cascade_scale[2].xz : scale;
+	offset = past2 ? frame.shadow_cascade_offset[2] : offset;
+	scale = past3 ? frame.shadow_cascade_scale[3].xz : scale;
+	offset = past3 ? frame.shadow_cascade_offset[3] : offset;
+	vec3 ndc = light * scale.xxy + offset.xyz;
 	vec2 uv = ndc.xy * 0.5 + 0.5;
 	// reversed-Z: the stored depth is the closest occluder (largest); a slope-scaled bias of about a
 	// texel's depth keeps surfaces from shadowing themselves. Beyond the casters' depth range the
@@ -118,8 +118,9 @@ float shadow_visibility(vec3 world, float ndotl)
 	float bias = offset.w * (1.0 + 3.0 * (1.0 - ndotl));
 	float reference = clamp(ndc.z + bias, 0.0, 1.0);
 	// The cascade's quarter of the atlas, kept half a texel inside so filtering never reads a neighbour.
-	vec2 tile = vec2(float(cascade & 1), float(cascade >> 1)) * 0.5;
-	vec2 atlas = tile + clamp(uv, vec2(scale.w), vec2(1.0 - scale.w)) * 0.5;
+	vec2 tile = vec2((past1 && !past2) || past3 ? 0.5 : 0.0, past2 ? 0.5 : 0.0); // cascade i: (i & 1, i >> 1) / 2
+	float margin = frame.shadow_cascade_scale[0].w;
+	vec2 atlas = tile + clamp(uv, vec2(margin), vec2(1.0 - margin)) * 0.5;
 	// One mip level, the same filter when magnified or minified: an explicit LOD is the same lookup
 	// without the derivatives and LOD selection an implicit one computes per fragment. The lookup is
 	// made for every fragment and outside points are selected away after it, not branched around:
@@ -153,8 +154,8 @@ struct MetalRough {
 
 // What light i adds to a surface point. i is a constant at every call (shade), so the light is read at
 // constant offsets of the frame block and only its own type's path is compiled in.
-vec3 light_contribution(int i, vec3 base, vec3 world, vec3 n, vec3 v, float specular, float shininess,
-			MetalRough mr)
+vec3 light_contribution(int i, vec3 base, vec3 world, vec4 shadow, vec3 n, vec3 v, float specular,
+			float shininess, MetalRough mr)
 {
 	Light light = frame.lights[i];
 	vec3 l;
@@ -173,7 +174,7 @@ vec3 light_contribution(int i, vec3 base, vec3 world, vec3 n, vec3 v, float spec
 		}
 	}
 	float ndotl = max(dot(n, l), 0.0);
-	float vis = i == SHADOW_LIGHT ? shadow_visibility(world, ndotl) : 1.0; // before any branch: see there
+	float vis = i == SHADOW_LIGHT ? shadow_visibility(shadow, ndotl) : 1.0; // before any branch: see there
 	if (ndotl <= 0.0)
 		return vec3(0.0);
 	vec3 lit = base * ndotl;
@@ -199,7 +200,9 @@ vec3 poisoned(vec3 color)
 
 // What the fragment shaders know of a surface point besides its base colour.
 struct Surface {
-	vec3 world, normal;   // interpolated, world space
+	vec3 world;           // interpolated, world space
+	vec4 shadow;          // shadow_coordinates(world), interpolated from the vertices
+	vec3 normal;          // interpolated, world space
 	vec4 tangent;         // world space xyz; w: handedness (normal maps)
 	vec2 uv, uv_dx, uv_dy;
 	bool front_facing;
@@ -251,7 +254,7 @@ vec3 shade(Material m, vec4 base, Surface s)
 	color *= occlusion;
 	// Unrolled by hand: with a loop up to LIGHT_COUNT, Mesa 22.3 kept the loop and indexed the lights
 	// per fragment (the scene pass ~1.6x slower). Lights with no contribution add exactly 0.
-#define ADD_LIGHT(i) if (i < LIGHT_COUNT) color += light_contribution(i, base.rgb, world, n, v, specular, shininess, mr);
+#define ADD_LIGHT(i) if (i < LIGHT_COUNT) color += light_contribution(i, base.rgb, world, s.shadow, n, v, specular, shininess, mr);
 	ADD_LIGHT(0) ADD_LIGHT(1) ADD_LIGHT(2) ADD_LIGHT(3) ADD_LIGHT(4) ADD_LIGHT(5) ADD_LIGHT(6) ADD_LIGHT(7)
 #undef ADD_LIGHT
 	return poisoned(color + emitted);

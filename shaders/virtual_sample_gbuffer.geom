@@ -8,6 +8,7 @@ layout(location = 1) in vec3 in_normal[];
 layout(location = 2) in vec2 in_uv[];
 layout(location = 8) in vec4 in_tangent[];
 layout(location = 9) in vec4 in_color[];
+layout(location = 10) in vec4 in_shadow[];
 layout(location = 3) in vec4 in_clip[];
 layout(location = 4) in vec4 in_prev_clip[];
 
@@ -16,6 +17,7 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 8) out vec4 out_tangent; // passed through: normal maps, vertex colours
 layout(location = 9) out vec4 out_color;
+layout(location = 10) out vec4 out_shadow;
 layout(location = 3) out vec4 out_clip;
 layout(location = 4) out vec4 out_prev_clip;
 layout(location = 5) out vec3 out_barycentric;
@@ -29,6 +31,7 @@ void main()
 		out_uv = in_uv[v];
 		out_tangent = in_tangent[v];
 		out_color = in_color[v];
+		out_shadow = in_shadow[v];
 		out_clip = in_clip[v];
 		out_prev_clip = in_prev_clip[v];
 		out_barycentric = vec3(v == 0, v == 1, v == 2);
