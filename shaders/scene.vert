@@ -15,8 +15,8 @@ layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 3) out vec3 out_barycentric; // virtual_sample.geom writes the real ones
 layout(location = 8) out vec4 out_tangent;     // normal maps
-layout(location = 9) out vec4 out_color;
-layout(location = 10) out vec4 out_shadow; // shadow_coordinates(): light space, view depth       // vertex colours
+layout(location = 9) out vec4 out_color;       // vertex colours
+layout(location = 10) out vec4 out_shadow;     // shadow_coordinates(): light space, view depth
 
 void main()
 {
