@@ -735,6 +735,17 @@ int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *
 	return 0;
 }
 
+void aa_fullscreen_draw(VkCommandBuffer cmd, const struct aa_gpu_pipeline *pipeline, VkDescriptorSet set,
+			const void *push, uint32_t push_size)
+{
+	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
+	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->layout, 0, 1, &set, 0, NULL);
+	if (push_size)
+		vkCmdPushConstants(cmd, pipeline->layout, VK_SHADER_STAGE_ALL, 0, push_size, push);
+	vkCmdDraw(cmd, 3, 1, 0, 0);
+	vkCmdEndRenderPass(cmd);
+}
+
 void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
 			       const void *push, uint32_t push_size)
 {
@@ -743,12 +754,7 @@ void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struc
 		aa_gpu_image_barrier(cmd, p->target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 	VkClearValue clear = {.color = {.float32 = {0, 0, 0, 0}}};
 	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, p->target->width, p->target->height, &clear, 1);
-	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
-	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
-	if (push_size)
-		vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, push_size, push);
-	vkCmdDraw(cmd, 3, 1, 0, 0);
-	vkCmdEndRenderPass(cmd);
+	aa_fullscreen_draw(cmd, &p->pipeline, p->set, push, push_size);
 	p->target->layout = p->load ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
 				    : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }

@@ -252,6 +252,10 @@ int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *
 void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_fullscreen_pass *p,
 			       const void *push, uint32_t push_size);
 void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p);
+/* Inside a begun render pass: binds the pipeline and its one descriptor set, pushes the constants (when
+ * push_size is not 0), draws the full-screen triangle and ends the pass. */
+void aa_fullscreen_draw(VkCommandBuffer cmd, const struct aa_gpu_pipeline *pipeline, VkDescriptorSet set,
+			const void *push, uint32_t push_size);
 
 /* A single-subpass render pass writing one colour attachment of this format (cached). */
 int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,

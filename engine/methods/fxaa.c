@@ -209,11 +209,7 @@ static void fxaa_pass_record(struct aa_method_state *s, VkCommandBuffer cmd, str
 	VkClearValue clear[2] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.depthStencil = {1.0f, 0}}};
 	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, s->r->width, s->r->height,
 			  p == &s->edges ? &clear[1] : clear, p == &s->edges ? 1 : 2);
-	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
-	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
-	vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, sizeof s->push, &s->push);
-	vkCmdDraw(cmd, 3, 1, 0, 0);
-	vkCmdEndRenderPass(cmd);
+	aa_fullscreen_draw(cmd, &p->pipeline, p->set, &s->push, sizeof s->push);
 }
 
 static int fxaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa_error *err)

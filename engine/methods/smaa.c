@@ -211,12 +211,7 @@ static void smaa_pass_record(struct aa_method_state *s, VkCommandBuffer cmd, str
 	if (p == &s->edge_pass)
 		clear[p->clear_count - 1].depthStencil = (VkClearDepthStencilValue){1.0f, 0};
 	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, s->r->width, s->r->height, clear, p->clear_count);
-	vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.pipeline);
-	vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline.layout, 0, 1, &p->set, 0, NULL);
-	if (push_size)
-		vkCmdPushConstants(cmd, p->pipeline.layout, VK_SHADER_STAGE_ALL, 0, push_size, push);
-	vkCmdDraw(cmd, 3, 1, 0, 0);
-	vkCmdEndRenderPass(cmd);
+	aa_fullscreen_draw(cmd, &p->pipeline, p->set, push, push_size);
 }
 
 static int smaa_create(struct aa_renderer *r, const struct aa_method_params *p, struct aa_method_result *info,
