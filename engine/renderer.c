@@ -388,14 +388,15 @@ int aa_renderer_create(struct aa_gpu *gpu, const struct aa_scene *scene, const s
 	r->models = calloc(objects, sizeof *r->models);
 	r->bounds = calloc(objects, sizeof *r->bounds);
 	r->blend_order = calloc(objects, sizeof *r->blend_order);
-	if (!r->models || !r->bounds || !r->blend_order ||
+	r->opaque_order = calloc(objects, sizeof *r->opaque_order);
+	if (!r->models || !r->bounds || !r->blend_order || !r->opaque_order ||
 	    aa_gpu_buffer_create(gpu, &r->frame_ubo, sizeof(struct aa_frame_uniforms),
 				 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, err) ||
 	    aa_gpu_buffer_create(gpu, &r->prev_models, sizeof(mat4) * (VkDeviceSize)(models > 0 ? models : 1),
 				 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, err) ||
 	    create_skinning(r, err) || classify_scene(r, err) || create_shadow_map(r, err) ||
 	    create_pipelines(r, err) || create_descriptors(r, err)) {
-		if (!r->models || !r->bounds || !r->blend_order)
+		if (!r->models || !r->bounds || !r->blend_order || !r->opaque_order)
 			aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 		aa_renderer_destroy(r);
 		return -1;
@@ -440,6 +441,7 @@ void aa_renderer_destroy(struct aa_renderer *r)
 	free(r->models);
 	free(r->bounds);
 	free(r->blend_order);
+	free(r->opaque_order);
 	free(r->skin_offset);
 	free(r->joint_matrices);
 	free(r->skin_scratch);
@@ -506,8 +508,9 @@ static void draw_object(struct aa_renderer *r, VkCommandBuffer cmd, int o, float
 			 skinned ? r->skin_offset[o] : (int32_t)r->upload->mesh_vertex_offset[obj->mesh_index], instance);
 }
 
-/* Draws every object: opaque ones first, cut-outs with the discard pipelines after them, then the blended
- * ones from the farthest (sorted each frame). opaque and cutout hold one pipeline per material class, or
+/* Draws every object: opaque ones first, cut-outs with the discard pipelines after them, each in
+ * opaque_order (the nearest first, so that the early depth test rejects more of what they hide), then the
+ * blended ones from the farthest (both sorted each frame). opaque and cutout hold one pipeline per material class, or
  * with classes 0 one for all objects: the shadow map, where instance is the cascade, blended objects
  * cast no shadow and visible[o] false skips an object outside the cascade. */
 static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struct aa_gpu_pipeline *opaque,
@@ -520,7 +523,7 @@ static void draw_objects(struct aa_renderer *r, VkCommandBuffer cmd, const struc
 		VkPipeline pipeline = VK_NULL_HANDLE;
 		int count = pass == 2 ? (classes > 0 ? r->blend_count : 0) : r->scene->object_count;
 		for (int k = 0; k < count; k++) {
-			int o = pass == 2 ? r->blend_order[k] : k;
+			int o = pass == 2 ? r->blend_order[k] : r->opaque_order[k];
 			const struct aa_object *obj = &r->scene->objects[o];
 			const struct aa_material *mat = &r->scene->materials[obj->material_index];
 			int c = classes > 0 ? r->object_class[o] : 0;

@@ -178,6 +178,7 @@ struct aa_renderer {
 	struct aa_box *bounds;           /* per object, this frame's world box */
 	int *blend_order;                /* the blended objects, farthest first this frame */
 	int blend_count;
+	int *opaque_order;               /* every object, the one whose box ends nearest first this frame */
 	/* skinned and animated mesh parts, posed on the CPU each frame: this frame's vertices (drawn instead of
 	 * the uploaded ones) and the previous frame's positions (read by the G-buffer for velocity) */
 	struct aa_gpu_buffer skinned_vertices, skinned_previous;
@@ -221,6 +222,10 @@ void aa_scene_target_destroy(struct aa_renderer *r, struct aa_scene_target *t);
  * jitter). Leaves t->output (and edges, readable depth) in SHADER_READ_ONLY_OPTIMAL. */
 void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct aa_scene_target *t,
 			    float jitter_x_px, float jitter_y_px);
+/* Sorts order[0..count) (indices into bounds) so that the object whose box ends nearest to eye comes first,
+ * ascending index on ties: the opaque draw order, which lets the early depth test reject the hidden parts
+ * of large objects. Returns -1 (order unchanged) without memory for the keys. */
+int aa_draw_order_front_to_back(const struct aa_box *bounds, int count, vec3 eye, int *order);
 
 /* A full-screen pass: a fragment shader reads up to eight sampled images (bindings 0..7, in order) and
  * writes one colour target of any format. Used by every post-process method. */

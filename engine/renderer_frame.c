@@ -62,13 +62,47 @@ static int compare_depth(const void *a, const void *b, void *user)
 	return da > db ? -1 : da < db ? 1 : *(const int *)a - *(const int *)b;
 }
 
-static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
+/* Opaque and cut-out objects, the one whose box ends nearest to the eye first, the scene's order on ties. */
+static int compare_reach(const void *a, const void *b, void *user)
+{
+	const float *reach = user;
+	float ra = reach[*(const int *)a], rb = reach[*(const int *)b];
+	return ra < rb ? -1 : ra > rb ? 1 : *(const int *)a - *(const int *)b;
+}
+
+/* The distance from p to the farthest point of box b. */
+static float farthest_distance(const struct aa_box *b, vec3 p)
+{
+	vec3 lo = v3_sub(b->min, p), hi = v3_sub(b->max, p);
+	vec3 d = v3(fmaxf(fabsf(lo.x), fabsf(hi.x)), fmaxf(fabsf(lo.y), fabsf(hi.y)), fmaxf(fabsf(lo.z), fabsf(hi.z)));
+	return sqrtf(v3_dot(d, d));
+}
+
+int aa_draw_order_front_to_back(const struct aa_box *bounds, int count, vec3 eye, int *order)
+{
+	float *reach = malloc((size_t)(count > 0 ? count : 1) * sizeof *reach);
+	if (!reach)
+		return -1;
+	for (int o = 0; o < count; o++)
+		reach[o] = farthest_distance(&bounds[o], eye);
+	qsort_r(order, (size_t)count, sizeof *order, compare_reach, reach);
+	free(reach);
+	return 0;
+}
+
+/* This frame's draw orders. Blended objects: back to front, as blending needs. Opaque and cut-out ones:
+ * front to back by where their boxes end (aa_draw_order_front_to_back), so that llvmpipe's early depth
+ * test rejects the hidden fragments of a floor or wall before they are shaded (docs/architecture.md,
+ * "The scene pass"). The order can only change which of two exactly equal depths wins, and every method
+ * and the reference draw through it. Without memory for the keys the scene's order stands. */
+static void sort_draws(struct aa_renderer *r, const struct aa_camera *camera)
 {
 	const struct aa_scene *s = r->scene;
 	vec3 forward = v3_normalize(v3_sub(camera->target, camera->position));
 	float *depth = malloc((size_t)(s->object_count ? s->object_count : 1) * sizeof *depth);
 	r->blend_count = 0;
 	for (int o = 0; o < s->object_count; o++) {
+		r->opaque_order[o] = o;
 		if (!s->materials[s->objects[o].material_index].blend)
 			continue;
 		vec3 c = v3_scale(v3_add(r->bounds[o].min, r->bounds[o].max), 0.5f);
@@ -79,6 +113,7 @@ static void sort_blended(struct aa_renderer *r, const struct aa_camera *camera)
 	if (depth)
 		qsort_r(r->blend_order, (size_t)r->blend_count, sizeof *r->blend_order, compare_depth, depth);
 	free(depth);
+	aa_draw_order_front_to_back(r->bounds, s->object_count, camera->position, r->opaque_order);
 }
 
 /* The shadow cascades for this camera (shadow_fit.c) into the frame uniforms. */
@@ -160,7 +195,7 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 		r->bounds[o] = aa_box_transform(r->models[o], m->bounds_min, m->bounds_max);
 	}
 	pose_skinned(r, t, prev_camera != NULL, prev_t);
-	sort_blended(r, &rel);
+	sort_draws(r, &rel);
 
 	struct aa_frame_uniforms *u = &r->uniforms;
 	memset(u, 0, sizeof *u);
