@@ -128,9 +128,17 @@ long aa_debug_targets_count_invalid(const void *data, VkFormat format, int width
 	return n;
 }
 
-static VkDeviceSize image_bytes(const struct aa_gpu_image *img)
+/* An image's bytes in the readback buffer, padded so that the next one starts at a 4-byte offset. */
+static VkDeviceSize readback_bytes(const struct aa_gpu_image *img)
 {
-	return (VkDeviceSize)img->width * img->height * aa_gpu_format_bytes(img->format);
+	return ((VkDeviceSize)img->width * img->height * aa_gpu_format_bytes(img->format) + 3) & ~(VkDeviceSize)3;
+}
+
+/* Whether entry t is read back for method owner: still the image it was entered as, and written by the
+ * method (an image still UNDEFINED holds nothing yet). */
+static bool to_read(const struct aa_debug_target *t, int owner)
+{
+	return t->owner == owner && t->img->image == t->image && t->img->layout != VK_IMAGE_LAYOUT_UNDEFINED;
 }
 
 int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_frame_result *fr, struct aa_error *err)
@@ -140,13 +148,10 @@ int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_fram
 	fr->invalid_target_count = 0;
 	if (!d)
 		return 0;
-	/* only images the method has written (an image still UNDEFINED holds nothing yet), at 4-byte offsets */
 	VkDeviceSize total = 0;
-	for (int i = 0; i < d->count; i++) {
-		const struct aa_debug_target *t = &d->targets[i];
-		if (t->owner == owner && t->img->image == t->image && t->img->layout != VK_IMAGE_LAYOUT_UNDEFINED)
-			total += (image_bytes(t->img) + 3) & ~(VkDeviceSize)3;
-	}
+	for (int i = 0; i < d->count; i++)
+		if (to_read(&d->targets[i], owner))
+			total += readback_bytes(d->targets[i].img);
 	if (total == 0)
 		return 0;
 	struct aa_gpu *gpu = d->gpu;
@@ -161,7 +166,7 @@ int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_fram
 	VkDeviceSize offset = 0;
 	for (int i = 0; i < d->count; i++) {
 		struct aa_debug_target *t = &d->targets[i];
-		if (t->owner != owner || t->img->image != t->image || t->img->layout == VK_IMAGE_LAYOUT_UNDEFINED)
+		if (!to_read(t, owner))
 			continue;
 		struct aa_gpu_image *img = t->img;
 		const VkImageLayout keep = img->layout;
@@ -174,7 +179,7 @@ int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_fram
 		vkCmdCopyImageToBuffer(cmd, img->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d->readback.buffer, 1,
 				       &region);
 		aa_gpu_image_barrier(cmd, img, keep); /* the method's next frame finds it as it left it */
-		offset += (image_bytes(img) + 3) & ~(VkDeviceSize)3;
+		offset += readback_bytes(img);
 	}
 	VkMemoryBarrier host = {
 		.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -188,11 +193,11 @@ int aa_debug_targets_check(struct aa_debug_targets *d, int owner, struct aa_fram
 	offset = 0;
 	for (int i = 0; i < d->count; i++) {
 		const struct aa_debug_target *t = &d->targets[i];
-		if (t->owner != owner || t->img->image != t->image || t->img->layout == VK_IMAGE_LAYOUT_UNDEFINED)
+		if (!to_read(t, owner))
 			continue;
 		const long bad = aa_debug_targets_count_invalid((const char *)d->readback.mapped + offset,
 								t->img->format, t->img->width, t->img->height);
-		offset += (image_bytes(t->img) + 3) & ~(VkDeviceSize)3;
+		offset += readback_bytes(t->img);
 		fr->targets_read++;
 		fr->intermediate_invalid += bad;
 		if (bad && fr->invalid_target_count < AA_MAX_INVALID_TARGETS) {

@@ -54,20 +54,13 @@ static void pose_skinned(struct aa_renderer *r, double t, bool has_prev, double 
 	}
 }
 
-/* The blended objects this frame, farthest from the camera first (drawn over what lies behind them). */
-static int compare_depth(const void *a, const void *b, void *user)
+/* Draw orders sort object indices by a key per object, smallest first and the scene's order on ties, so
+ * that the order is the same on every run (qsort alone is not stable). */
+static int compare_key(const void *a, const void *b, void *user)
 {
-	const float *depth = user;
-	float da = depth[*(const int *)a], db = depth[*(const int *)b];
-	return da > db ? -1 : da < db ? 1 : *(const int *)a - *(const int *)b;
-}
-
-/* Opaque and cut-out objects, the one whose box ends nearest to the eye first, the scene's order on ties. */
-static int compare_reach(const void *a, const void *b, void *user)
-{
-	const float *reach = user;
-	float ra = reach[*(const int *)a], rb = reach[*(const int *)b];
-	return ra < rb ? -1 : ra > rb ? 1 : *(const int *)a - *(const int *)b;
+	const float *key = user;
+	float ka = key[*(const int *)a], kb = key[*(const int *)b];
+	return ka < kb ? -1 : ka > kb ? 1 : *(const int *)a - *(const int *)b;
 }
 
 /* The distance from p to the farthest point of box b. */
@@ -85,7 +78,7 @@ int aa_draw_order_front_to_back(const struct aa_box *bounds, int count, vec3 eye
 		return -1;
 	for (int o = 0; o < count; o++)
 		reach[o] = farthest_distance(&bounds[o], eye);
-	qsort_r(order, (size_t)count, sizeof *order, compare_reach, reach);
+	qsort_r(order, (size_t)count, sizeof *order, compare_key, reach);
 	free(reach);
 	return 0;
 }
@@ -106,12 +99,12 @@ static void sort_draws(struct aa_renderer *r, const struct aa_camera *camera)
 		if (!s->materials[s->objects[o].material_index].blend)
 			continue;
 		vec3 c = v3_scale(v3_add(r->bounds[o].min, r->bounds[o].max), 0.5f);
-		if (depth)
-			depth[o] = v3_dot(v3_sub(c, camera->position), forward);
+		if (depth) /* farthest first: the smallest key */
+			depth[o] = -v3_dot(v3_sub(c, camera->position), forward);
 		r->blend_order[r->blend_count++] = o;
 	}
 	if (depth)
-		qsort_r(r->blend_order, (size_t)r->blend_count, sizeof *r->blend_order, compare_depth, depth);
+		qsort_r(r->blend_order, (size_t)r->blend_count, sizeof *r->blend_order, compare_key, depth);
 	free(depth);
 	aa_draw_order_front_to_back(r->bounds, s->object_count, camera->position, r->opaque_order);
 }
