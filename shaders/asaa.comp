@@ -41,19 +41,9 @@ layout(push_constant) uniform Push {
 // tonemapped_resolve: each tap (a bilinear fetch of 2x2 texels), the new sample and the history count
 // 1/(1 + luma) times their usual weight (Karis 2014, as t2msaa's blend), so a jittered hit on an HDR
 // emitter cannot spread it over the pixel and its neighbours for frames.
-float resolve_weight(vec3 c)
-{
-	return pc.tonemapped_resolve != 0 ? 1.0 / (1.0 + luma(c)) : 1.0;
-}
-
-// mix(a, b, k) with those weights: k is b's share before weighting
-vec3 resolve_mix(vec3 a, vec3 b, float k)
-{
-	if (pc.tonemapped_resolve == 0) // uniform: the plain mix, bit for bit
-		return mix(a, b, k);
-	float wa = (1.0 - k) * resolve_weight(a), wb = k * resolve_weight(b);
-	return (wa * a + wb * b) / (wa + wb);
-}
+#define RESOLVE_KARIS (pc.tonemapped_resolve != 0)
+#define RESOLVE_LUMA luma
+#include "resolve_weight.glsl"
 
 const float NO_HISTORY = 65000.0;
 

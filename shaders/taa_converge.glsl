@@ -80,21 +80,10 @@ vec3 tonemap_inverse(vec3 t)
 	return t / max(1.0 - luma709(t), 1.0 / 65504.0);
 }
 
-// tonemapped_resolve: a colour's weight in every sum and blend is 1/(1 + luma) (Karis 2014), so a
-// sample of an HDR emitter counts about as much as a white one instead of 1e4 times more.
-float resolve_weight(vec3 c)
-{
-	return pc.tonemapped_resolve != 0 ? 1.0 / (1.0 + luma709(c)) : 1.0;
-}
-
-// mix(a, b, k) with those weights: k is b's share before weighting
-vec3 resolve_mix(vec3 a, vec3 b, float k)
-{
-	if (pc.tonemapped_resolve == 0) // uniform: the plain mix, bit for bit
-		return mix(a, b, k);
-	float wa = (1.0 - k) * resolve_weight(a), wb = k * resolve_weight(b);
-	return (wa * a + wb * b) / (wa + wb);
-}
+// tonemapped_resolve: Karis' 1/(1 + luma) weight on every colour summed or blended
+#define RESOLVE_KARIS (pc.tonemapped_resolve != 0)
+#define RESOLVE_LUMA luma709
+#include "resolve_weight.glsl"
 
 // The working space of the clip box: tonemapped YCoCg, or linear YCoCg with clip_space=linear.
 vec3 to_working(vec3 linear)

@@ -8,9 +8,10 @@ glsl_files += shaders/gbaa.geom shaders/gbaa.frag shaders/gbaa_resolve.frag shad
 	shaders/taa_resolve.frag shaders/taa_master_resolve.frag shaders/taa_sharpen.frag \
 	shaders/taa_sobel_edges.frag shaders/taa_sobel_stabilise.frag \
 	shaders/taa_converge.comp shaders/taa_master_converge.comp
-EXTRA_DIST += shaders/shading.glsl shaders/taa_common.glsl shaders/taa_resolve.glsl shaders/taa_converge.glsl
+EXTRA_DIST += shaders/shading.glsl shaders/taa_common.glsl shaders/taa_resolve.glsl shaders/taa_converge.glsl \
+	shaders/resolve_weight.glsl
 $(glsl_headers): $(srcdir)/shaders/shading.glsl $(srcdir)/shaders/taa_common.glsl $(srcdir)/shaders/taa_resolve.glsl \
-	$(srcdir)/shaders/taa_converge.glsl
+	$(srcdir)/shaders/taa_converge.glsl $(srcdir)/shaders/resolve_weight.glsl
 
 check_PROGRAMS += tests/integration/test_analytic_edges
 tests_integration_test_analytic_edges_SOURCES = tests/integration/test_analytic_edges.c $(GPU_TEST_FIXTURE)
