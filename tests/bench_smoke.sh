@@ -10,7 +10,9 @@ grep -q "extra/copy" "$TMP/out" && grep -Eq "^fxaa +[0-9]" "$TMP/out" && pass "a
 	|| { fail "bench/methods printed no table"; sed 's/^/  | /' "$TMP/out" | head; }
 grep -q "scene pass of none: .* x the floor pass" "$TMP/out" && pass "with the scene pass against the floor" \
 	|| fail "bench/methods printed no scene/floor ratio"
-grep -Eq "^fxaa +[0-9.]+ \([0-9.-]+-[0-9.]+\) +1 +[0-9.]+ \(" "$TMP/out" &&
+# One pair of renders at this size can make the extra negative (it did once in CI): the sign is
+# noise, so only the shape is checked, and that the own passes were measured at all.
+grep -Eq "^fxaa +-?[0-9.]+ \(-?[0-9.]+--?[0-9.]+\) +1 +[0-9.]+ \(" "$TMP/out" &&
 	awk '$1 == "fxaa" && NF == 7 && $5 > 0 { ok = 1 } END { exit !ok }' "$TMP/out" &&
 	pass "and fxaa's extra paired per round, with its own passes (not 0)" \
 	|| { fail "bench/methods printed no per-round row for fxaa"; grep -A3 "per round" "$TMP/out"; }
