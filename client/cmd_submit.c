@@ -15,8 +15,10 @@ static const char submit_help[] =
 	"                    [--watch] [--connect ADDRESS] [--json] [--quiet]\n"
 	"\n"
 	"Queues a job on aalabd and prints its id. --scene-file sends your own scene file with the job.\n"
-	"--watch follows the job until it ends. ADDRESS is unix:PATH or tcp:HOST:PORT (default\n"
-	"$AALAB_CONNECT, then $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock).\n";
+	"--watch follows the job until it ends, as aalab watch does after the id: a progress bar on a\n"
+	"terminal, one line per event otherwise, JSON lines with --json, nothing with --quiet; the exit\n"
+	"status is then the job's (0 done, 1 failed or cancelled). ADDRESS is unix:PATH or tcp:HOST:PORT\n"
+	"(default $AALAB_CONNECT, then $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock).\n";
 
 /* Submits and returns the reply (NULL if the connection failed, or the payload could not be made). With
  * user methods in the job, their files go with it (and are compiled here first). */
@@ -75,7 +77,7 @@ int cmd_submit(int argc, char **argv)
 	};
 	json_t *overrides = json_object();
 	const char *connect = NULL, *scene_file = NULL;
-	bool watch = false, json = false, quiet = !isatty(STDERR_FILENO);
+	bool watch = false, json = false, quiet = false;
 	int c, idx, status = AA_EXIT_USAGE;
 	char *scene = NULL;
 	size_t scene_size = 0;

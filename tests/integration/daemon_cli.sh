@@ -11,6 +11,12 @@ id=$(cat "$TMP/out")
 echo "$id" | grep -Eq '^[0-9]{6}$' && pass "job id $id" || fail "job id '$id'"
 expect_status 0 "watch follows it to the end" -- "$AALAB" watch "$id" $C
 grep -q "job_finished" "$TMP/out" && pass "watch prints plain lines ending in job_finished" || fail "watch output: $(cat "$TMP/out")"
+# submit --watch outside a terminal follows the job as watch does (it once printed only the id)
+expect_status 0 "submit --watch" -- "$AALAB" submit $job --watch $C
+head -1 "$TMP/out" | grep -Eq '^[0-9]{6}$' && grep -q " frame 1 ssaa:4 " "$TMP/out" && tail -1 "$TMP/out" | grep -q "job_finished" &&
+	pass "prints the id, then a line per event to job_finished" || fail "submit --watch output: $(cat "$TMP/out")"
+expect_status 0 "submit --watch --quiet" -- "$AALAB" submit $job --watch --quiet $C
+[ "$(wc -l <"$TMP/out")" -eq 1 ] && pass "prints only the id" || fail "submit --watch --quiet output: $(cat "$TMP/out")"
 expect_status 0 "watch --after 3 --json" -- "$AALAB" watch "$id" --after 3 --json $C
 /usr/bin/python3 -c '
 import json, sys
