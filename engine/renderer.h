@@ -28,7 +28,6 @@ struct aa_frame_uniforms {
 	float view_proj[16];
 	float prev_view_proj[16];
 	float shadow_view_proj[16];
-	float camera_position[4];
 	float ambient[4];
 	float frame_size[4];
 	float camera_planes[4];

@@ -197,7 +197,7 @@ void aa_renderer_set_frame(struct aa_renderer *r, const struct aa_camera *camera
 	u->camera_planes[0] = camera->near_plane;
 	u->camera_planes[1] = camera->far_plane;
 	u->camera_planes[2] = camera->projection == AA_PROJECTION_ORTHOGRAPHIC ? 1.0f : 0.0f;
-	/* camera_position stays 0: the shaders' world positions are relative to the eye */
+	/* the shaders' world positions are relative to the eye: the frame carries no camera position */
 	vec3 forward = v3_normalize(rel.target);
 	u->camera_forward[0] = forward.x, u->camera_forward[1] = forward.y, u->camera_forward[2] = forward.z;
 	memcpy(u->ambient, s->ambient, 3 * sizeof(float));

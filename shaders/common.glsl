@@ -21,7 +21,6 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 	mat4 view_proj;       // unjittered; jitter is added per draw after projection
 	mat4 prev_view_proj;  // the previous frame's (for velocity); equal to view_proj after a cut
 	mat4 shadow_view_proj;
-	vec4 camera_position;
 	vec4 ambient;
 	vec4 frame_size;      // xy: the frame's width and height in pixels
 	vec4 camera_planes;   // x: near, y: far, z: 1 if orthographic
@@ -34,7 +33,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 	vec4 shadow_cascade_scale[SHADOW_CASCADES];
 	vec4 shadow_cascade_offset[SHADOW_CASCADES];
 	vec4 shadow_splits;                   // view depths where cascades 1, 2 and 3 begin
-	vec4 camera_forward;                  // unit view direction: view depth = dot(p - camera_position, forward)
+	vec4 camera_forward;                  // unit view direction: view depth = dot(p, forward), p eye-relative
 } frame;
 
 struct Material {
@@ -79,5 +78,5 @@ layout(push_constant) uniform Draw {
 vec4 shadow_coordinates(vec3 world)
 {
 	return vec4((frame.shadow_light_view * vec4(world, 1.0)).xyz,
-		    dot(world - frame.camera_position.xyz, frame.camera_forward.xyz));
+		    dot(world, frame.camera_forward.xyz));
 }

@@ -74,7 +74,7 @@ void main()
 	vec3 geometric = cross(dFdx(in_world), dFdy(in_world));
 	float len = length(geometric);
 	out_normal = vec4(len > 0.0 ? geometric / len : normalize(in_normal), 1.0);
-	if (dot(out_normal.xyz, frame.camera_position.xyz - world) < 0.0)
+	if (dot(out_normal.xyz, world) > 0.0)
 		out_normal.xyz = -out_normal.xyz; // face the camera, as the shading does
 	float luma = dot(base.rgb, vec3(0.2126, 0.7152, 0.0722));
 	// view-space distance along the view axis: clip.w in perspective; orthographic undoes its z mapping

@@ -231,7 +231,7 @@ vec3 shade(Material m, vec4 base, Surface s)
 		tn.xy *= m.maps.x;
 		n = normalize(mat3(t, b, n) * tn);
 	}
-	vec3 v = normalize(frame.camera_position.xyz - world);
+	vec3 v = normalize(-world); // world is relative to the eye
 	vec3 color = frame.ambient.rgb * base.rgb;
 	float specular = m.shading.x;
 	float shininess = mix(512.0, 4.0, clamp(m.shading.y, 0.0, 1.0));
