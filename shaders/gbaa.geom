@@ -1,9 +1,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// GBAA (Persson 2011, seed 000 section 3.3): for each triangle, the screen-space distance from each vertex
-// to each of the three edges, measured along the edge's major axis (vertical distance for a mostly
-// horizontal edge, horizontal for a mostly vertical one). Interpolated without perspective these give,
-// at every pixel, the signed offset to each edge.
+// GBAA (Persson 2011, seed 000 section 3.3): for each triangle, its three edges as lines in homogeneous
+// pixel coordinates (the cross product of two vertices' (x, y, w) in pixels times w), passed flat; the
+// fragment shader evaluates them at its pixel centre for the signed offset to each edge along the edge's
+// major axis (vertical distance for a mostly horizontal edge, horizontal for a mostly vertical one).
+// The seed's form, distances computed at the projected vertices and interpolated without perspective,
+// divides by w: a vertex near or behind the eye plane gave huge or meaningless values (such triangles had
+// to be left without edges), and the clipper's new vertices carried whatever it interpolated. A line
+// through two homogeneous points is exact wherever they lie, and a flat value is never interpolated.
 #include "common.glsl"
 
 layout(triangles) in;
@@ -22,35 +26,18 @@ layout(location = 2) out vec2 out_uv;
 layout(location = 8) out vec4 out_tangent; // passed through: normal maps, vertex colours
 layout(location = 9) out vec4 out_color;
 layout(location = 10) out vec4 out_shadow;
-layout(location = 3) noperspective out vec3 out_edge_distance;
-layout(location = 4) flat out vec3 out_edge_vertical; // 1: distance is along y (edge mostly horizontal)
+layout(location = 3) flat out vec3 out_edge_line[3]; // edge e (opposite vertex e): a x + b y + c = 0 in pixels
 
 void main()
 {
-	vec2 p[3];
-	bool behind = false;
+	vec3 p[3];
 	for (int i = 0; i < 3; i++) {
 		vec4 c = gl_in[i].gl_Position;
-		behind = behind || c.w <= 1e-6;
-		p[i] = (c.xy / max(c.w, 1e-6) * 0.5 + 0.5) * frame.frame_size.xy;
+		p[i] = vec3((c.xy * 0.5 + 0.5 * c.w) * frame.frame_size.xy, c.w);
 	}
-	vec3 vertical;
-	float dist[3][3]; // dist[vertex][edge]; edge e joins vertices e+1 and e+2 (opposite vertex e)
-	for (int e = 0; e < 3; e++) {
-		vec2 a = p[(e + 1) % 3], b = p[(e + 2) % 3], d = b - a;
-		bool horizontal = abs(d.x) >= abs(d.y);
-		vertical[e] = horizontal ? 1.0 : 0.0;
-		for (int v = 0; v < 3; v++) {
-			float value;
-			if (behind || max(abs(d.x), abs(d.y)) < 1e-6)
-				value = 1e3; // no usable edge: never blends
-			else if (horizontal)
-				value = a.y + d.y * (p[v].x - a.x) / d.x - p[v].y;
-			else
-				value = a.x + d.x * (p[v].y - a.y) / d.y - p[v].x;
-			dist[v][e] = value;
-		}
-	}
+	vec3 line[3];
+	for (int e = 0; e < 3; e++)
+		line[e] = cross(p[(e + 1) % 3], p[(e + 2) % 3]);
 	for (int v = 0; v < 3; v++) {
 		gl_Position = gl_in[v].gl_Position;
 		out_world = in_world[v];
@@ -59,8 +46,7 @@ void main()
 		out_tangent = in_tangent[v];
 		out_color = in_color[v];
 		out_shadow = in_shadow[v];
-		out_edge_distance = vec3(dist[v][0], dist[v][1], dist[v][2]);
-		out_edge_vertical = vertical;
+		out_edge_line = line;
 		EmitVertex();
 	}
 	EndPrimitive();
