@@ -92,9 +92,12 @@ struct aa_service_args {
 int aa_service_args(const char *cmd, const char *help, int argc, char **argv, struct aa_service_args *a);
 /* 0 for an ok reply; otherwise prints "aalab CMD: path: message" and returns the exit status. */
 int aa_reply_status(const char *cmd, json_t *reply);
-/* cmd_watch.c: streams a job's events with a progress bar (tty) or plain lines, or as JSON lines;
- * returns the exit status (0 done, 1 failed or cancelled). */
-int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, bool json, bool quiet);
+/* cmd_watch.c: what a watch prints of the job's events. EVENTS: a progress bar on a terminal, one plain
+ * line per event on stdout otherwise; JSON: the events as JSON lines; PROGRESS (aalab run, whose stdout
+ * is for the table): a progress bar on a terminal, a line per tenth on stderr otherwise; QUIET: nothing. */
+enum aa_watch_output { AA_WATCH_EVENTS, AA_WATCH_JSON, AA_WATCH_PROGRESS, AA_WATCH_QUIET };
+/* Streams a job's events; returns the exit status (0 done, 1 failed or cancelled). */
+int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output);
 /* cmd_get.c: downloads a job's files into dir (all, or results.json and report.html only). */
 int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images);
 /* cmd_get.c: the cost-vs-accuracy table from a results.json document. */
@@ -117,6 +120,11 @@ int aa_submit_payload(json_t *files, const char *scene, size_t scene_size, char 
 void aa_print_table(const struct aa_job_result *r, FILE *out);
 void aa_progress_update(int done, int total, const char *what);
 void aa_progress_finish(void);
+/* Progress where stderr is not a terminal (logs, CI, Slurm): "aalab CMD: WHAT D/T (P%)" each time the
+ * share done passes another tenth, so a long job says where it is in at most ten lines. */
+void aa_progress_line(const char *cmd, int done, int total, const char *what);
+/* The bar on a terminal, aa_progress_line otherwise. */
+void aa_progress_show(const char *cmd, int done, int total, const char *what);
 
 /* Splits a --methods value into method strings: commas separate methods, except that a "key=value"
  * token without ':' continues the previous method's parameters ("fxaa:preset=12,subpix=0.5,none"). */

@@ -62,7 +62,8 @@ const char aa_run_help[] =
 	"                          texels: results.json frames[].intermediates, the finite verdict (job\n"
 	"                          field debug_targets; slower)\n"
 	"  --json                  print results.json to standard output instead of the table\n"
-	"  --quiet                 no progress display\n"
+	"  --quiet                 no progress (a bar on a terminal; otherwise a line on stderr each time\n"
+	"                          another tenth of the renders is done)\n"
 	"  --local                 run in this process even when aalabd is running\n"
 	"  --connect ADDRESS       run on this aalabd (unix:PATH or tcp:HOST:PORT); without it and without\n"
 	"                          --local, a daemon on the default socket is used when one answers\n"
@@ -87,7 +88,7 @@ static int on_event(const struct aa_event *ev, void *user)
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
 	if (ev->type == AA_EVENT_PROGRESS && !o->quiet)
-		aa_progress_update(ev->done, ev->total, "rendering");
+		aa_progress_show("run", ev->done, ev->total, "rendering");
 	/* a failed image write stops the job: carrying on would lose data silently */
 	return o->failed_writes > 0;
 }
@@ -133,7 +134,7 @@ int cmd_run(int argc, char **argv)
 	};
 	json_t *overrides = json_object();
 	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
-	bool images = true, print_json = false, quiet = !isatty(STDERR_FILENO), local = false, force = false, exr = false;
+	bool images = true, print_json = false, quiet = false, local = false, force = false, exr = false;
 	struct aa_out_dir od = {0};
 	struct aa_job_spec spec;
 	bool spec_parsed = false;

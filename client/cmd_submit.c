@@ -127,7 +127,8 @@ int cmd_submit(int argc, char **argv)
 		}
 		fflush(stdout);
 		if (watch)
-			status = aa_watch_job(conn, "submit", id, 0, json, quiet);
+			status = aa_watch_job(conn, "submit", id, 0,
+					      json ? AA_WATCH_JSON : quiet ? AA_WATCH_QUIET : AA_WATCH_EVENTS);
 	}
 	json_decref(r);
 	aa_conn_close(conn);
@@ -154,7 +155,7 @@ int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *s
 	json_decref(r);
 	/* always said, so that a log shows where the numbers came from */
 	fprintf(stderr, "aalab run: job %s on aalabd (--local runs in this process)\n", id);
-	status = aa_watch_job(c, "run", id, 0, false, quiet || !isatty(STDERR_FILENO)); /* stdout is for the table */
+	status = aa_watch_job(c, "run", id, 0, quiet ? AA_WATCH_QUIET : AA_WATCH_PROGRESS); /* stdout is for the table */
 	if (status == AA_EXIT_OK)
 		status = aa_get_job_files(c, "run", id, dir, images);
 	if (status)

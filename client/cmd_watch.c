@@ -57,7 +57,7 @@ static void print_event(json_t *ev)
 	}
 }
 
-int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, bool json, bool quiet)
+int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output)
 {
 	json_t *msg = json_pack("{ss ss sI}", "op", "watch", "job", job, "after", (json_int_t)after);
 	json_t *r = aa_conn_request(c, msg, NULL, NULL);
@@ -66,7 +66,8 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 	json_decref(r);
 	if (status)
 		return status;
-	bool tty = isatty(STDERR_FILENO) && !quiet;
+	const bool json = output == AA_WATCH_JSON, quiet = output == AA_WATCH_QUIET;
+	const bool tty = isatty(STDERR_FILENO) && !quiet && !json;
 	const char *last = "";
 	char last_buf[32] = "";
 	for (;;) {
@@ -90,11 +91,13 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 			json_dumpf(ev, stdout, JSON_COMPACT);
 			fputc('\n', stdout);
 			fflush(stdout);
-		} else if (tty) {
+		} else if (tty || output == AA_WATCH_PROGRESS) {
 			json_t *done = json_object_get(ev, "done");
-			if (done)
-				aa_progress_update((int)json_integer_value(done), (int)json_integer_value(json_object_get(ev, "total")),
-						   json_string_value(json_object_get(ev, "method")));
+			int d = (int)json_integer_value(done), t = (int)json_integer_value(json_object_get(ev, "total"));
+			if (done && tty)
+				aa_progress_update(d, t, json_string_value(json_object_get(ev, "method")));
+			else if (done)
+				aa_progress_line(cmd, d, t, "rendering");
 		} else if (!quiet) {
 			print_event(ev);
 			fflush(stdout);
@@ -109,8 +112,7 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		}
 		json_decref(ev);
 	}
-	if (tty)
-		aa_progress_finish();
+	aa_progress_finish();
 	if (!strcmp(last, "job_finished"))
 		return AA_EXIT_OK;
 	if (!strcmp(last, "job_cancelled") && !json)
@@ -158,7 +160,8 @@ int cmd_watch(int argc, char **argv)
 		fprintf(stderr, "aalab watch: %s\n", err);
 		return AA_EXIT_FAILED;
 	}
-	int status = aa_watch_job(conn, "watch", argv[optind], after, json, quiet);
+	int status = aa_watch_job(conn, "watch", argv[optind], after,
+				  json ? AA_WATCH_JSON : quiet ? AA_WATCH_QUIET : AA_WATCH_EVENTS);
 	aa_conn_close(conn);
 	return status;
 }

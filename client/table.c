@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "client.h"
 
@@ -119,8 +120,33 @@ void aa_progress_update(int done, int total, const char *what)
 	fflush(stderr);
 }
 
+static int progress_tenth; /* the last tenth aa_progress_line printed (0: none yet) */
+
+void aa_progress_line(const char *cmd, int done, int total, const char *what)
+{
+	if (total <= 0)
+		return;
+	if (done < 0)
+		done = 0;
+	int tenth = done >= total ? 10 : (int)((long)done * 10 / total);
+	if (tenth <= progress_tenth)
+		return;
+	progress_tenth = tenth;
+	fprintf(stderr, "aalab %s: %s %d/%d (%d%%)\n", cmd, what, done, total, (int)((long)done * 100 / total));
+	fflush(stderr);
+}
+
+void aa_progress_show(const char *cmd, int done, int total, const char *what)
+{
+	if (isatty(STDERR_FILENO))
+		aa_progress_update(done, total, what);
+	else
+		aa_progress_line(cmd, done, total, what);
+}
+
 void aa_progress_finish(void)
 {
+	progress_tenth = 0;
 	if (progress_width) {
 		fprintf(stderr, "\r%*s\r", progress_width, "");
 		progress_width = 0;

@@ -56,6 +56,17 @@ paths = [f.get(k) for m in r["methods"] for f in m["frames"] for k in ("image", 
 paths += [f.get("image") for f in r["reference"].get("per_frame", [])]
 assert paths and all(p is None for p in paths), paths
 PY
+# progress outside a terminal: a line per tenth of the renders on stderr, the table alone on stdout
+expect_status 0 "a run without --quiet, stderr not a terminal" -- "$AALAB" run ${job% --quiet} --frames 5 --no-images --out "$TMP/e"
+/usr/bin/python3 - "$TMP/err" "$TMP/out" <<'PY' && pass "progress: a line per tenth on stderr, to 15/15 (100%)" || fail "progress lines: $(cat "$TMP/err")"
+import re, sys
+lines = [l for l in open(sys.argv[1]).read().splitlines() if l.startswith("aalab run: rendering")]
+done = [int(re.match(r"aalab run: rendering (\d+)/15 \((\d+)%\)$", l).group(1)) for l in lines]
+assert 1 <= len(done) <= 10 and done == sorted(done) and done[-1] == 15, lines
+assert "rendering" not in open(sys.argv[2]).read()
+PY
+expect_status 0 "--quiet" -- "$AALAB" run $job --no-images --out "$TMP/f"
+grep -q "rendering" "$TMP/err" && fail "--quiet printed progress: $(cat "$TMP/err")" || pass "--quiet prints no progress"
 expect_status 0 "--no-viewer" -- "$AALAB" run $job --no-viewer --out "$TMP/d"
 [ -d "$TMP/d/frames/none" ] && [ ! -e "$TMP/d/viewer" ] && grep -q '"no_images":"No viewer: the job left it out' "$TMP/d/report.html" &&
 	pass "--no-viewer keeps the PNGs, writes no viewer/, and the report says why it has no viewer" ||

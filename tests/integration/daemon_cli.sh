@@ -53,6 +53,8 @@ expect_stderr "was cancelled" "watch says it was cancelled"
 # run: through the daemon ($AALAB_CONNECT), and in-process with --local
 AALAB_CONNECT="unix:$sock" expect_status 0 "run through the daemon" -- "$AALAB" run $job --out "$TMP/remote"
 grep -q "aalab run: job [0-9]* on aalabd" "$TMP/err" && pass "run says it used aalabd" || fail "run did not use aalabd: $(cat "$TMP/err")"
+grep -q "aalab run: rendering 6/6 (100%)" "$TMP/err" && ! grep -q "rendering" "$TMP/out" &&
+	pass "and its progress, outside a terminal, as lines on stderr" || fail "run via daemon, progress: $(cat "$TMP/err")"
 [ -s "$TMP/remote/results.json" ] && [ -s "$TMP/remote/frames/none/0000.png" ] && pass "run wrote results and frames" || fail "run via daemon: missing files"
 grep -q "| ssaa:4 |" "$TMP/out" && pass "run prints the table" || fail "run table: $(cat "$TMP/out")"
 AALAB_CONNECT="unix:$sock" expect_status 0 "run --local" -- "$AALAB" run $job --local --out "$TMP/local" --quiet
