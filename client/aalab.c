@@ -10,10 +10,18 @@ static const struct aa_cmd_entry commands[] = {
 		"[--reference-samples N] [--repeat N] [--over-threshold X] [--label KEY=VALUE] [--out DIR] [--device SEL] "
 		"[--no-images] [--no-viewer] [--exr] [--json] [--quiet] [--shard I/N]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
-	{"scenes", "scenes [--json]", "list the scenes that can be named with --scene", cmd_scenes, NULL},
-	{"suites", "suites [--json]", "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
-	{"methods", "methods [--json]", "list the AA methods with their parameters, defaults and valid values",
-	 cmd_methods, NULL},
+	{"scenes", AA_SCENES_USAGE, "list the scenes that can be named with --scene", cmd_scenes,
+	 "usage: aalab " AA_SCENES_USAGE "\n\n"
+	 "Lists the scenes that --scene can name (from their JSON alone: no mesh is loaded), each with its\n"
+	 "objects, camera paths and description. With a NAME or a scene file, loads that scene and describes\n"
+	 "it: triangles, objects, materials, textures, paths, the animations of its mesh files and what loading\n"
+	 "dropped (warnings). --json prints the same as JSON.\n"},
+	{"suites", AA_SUITES_USAGE, "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
+	{"methods", AA_METHODS_USAGE, "list the AA methods with their parameters, defaults and valid values",
+	 cmd_methods,
+	 "usage: aalab " AA_METHODS_USAGE "\n\n"
+	 "Lists the AA methods (only those named, when names are given), each with its seed and its parameters:\n"
+	 "type, default, valid values and what it does. --json prints the same as JSON. An unknown name exits 2.\n"},
 	{"submit", "submit [JOB.json] [job flags of run] [--scene-file FILE] [--watch] [--connect ADDRESS] [--json]",
 	 "queue a job on aalabd and print its id", cmd_submit, NULL},
 	{"watch", "watch JOB [--after SEQ] [--connect ADDRESS] [--json]", "follow a job on aalabd until it ends",

@@ -116,6 +116,14 @@ int aa_job_user_files(const char *cmd, const json_t *job, bool compile, json_t *
 int aa_submit_payload(json_t *files, const char *scene, size_t scene_size, char **payload, size_t *size,
 		      const char **format);
 
+/* cmd_list.c: the usage lines of the listing commands, and their argument check: --json and up to
+ * max_names names (*first: the first name's index in argv, 0 when none); otherwise exit status 2. */
+#define AA_SCENES_USAGE "scenes [NAME|FILE.json] [--json]"
+#define AA_METHODS_USAGE "methods [NAME ...] [--json]"
+#define AA_SUITES_USAGE "suites [--json]"
+int aa_list_args(const char *cmd, const char *usage, int argc, char **argv, int max_names, bool *json,
+		 int *first);
+
 /* table.c: the cost-vs-accuracy table and progress display */
 void aa_print_table(const struct aa_job_result *r, FILE *out);
 void aa_progress_update(int done, int total, const char *what);

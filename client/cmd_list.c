@@ -7,12 +7,29 @@
 #include "methods/method.h"
 #include "scene/scene.h"
 
-static bool want_json(int argc, char **argv)
+/* The arguments of a listing command: --json, and at most max_names names (the first is returned in
+ * *first, NULL when none). Anything else is a usage error (exit 2): an unknown option was once ignored,
+ * and a name given to `aalab methods` listed every method. */
+int aa_list_args(const char *cmd, const char *usage, int argc, char **argv, int max_names, bool *json,
+		 int *first)
 {
-	for (int i = 1; i < argc; i++)
-		if (strcmp(argv[i], "--json") == 0)
-			return true;
-	return false;
+	int names = 0;
+	*json = false;
+	*first = 0;
+	for (int i = 1; i < argc; i++) {
+		if (strcmp(argv[i], "--json") == 0) {
+			*json = true;
+		} else if (argv[i][0] == '-') {
+			fprintf(stderr, "aalab %s: unknown option '%s'\nusage: aalab %s\n", cmd, argv[i], usage);
+			return AA_EXIT_USAGE;
+		} else if (++names > max_names) {
+			fprintf(stderr, "aalab %s: unexpected argument '%s'\nusage: aalab %s\n", cmd, argv[i], usage);
+			return AA_EXIT_USAGE;
+		} else if (!*first) {
+			*first = i;
+		}
+	}
+	return AA_EXIT_OK;
 }
 
 /* One scene loaded whole: what it draws, the animations of its mesh files and what loading dropped. */
@@ -71,10 +88,12 @@ static int describe_scene(const char *name, bool json)
  * take seconds and hundreds of MB), so triangle counts are left to `aalab scenes NAME`. */
 int cmd_scenes(int argc, char **argv)
 {
-	bool json = want_json(argc, argv);
-	for (int i = 1; i < argc; i++)
-		if (argv[i][0] != '-')
-			return describe_scene(argv[i], json);
+	bool json;
+	int name, status = aa_list_args("scenes", AA_SCENES_USAGE, argc, argv, 1, &json, &name);
+	if (status)
+		return status;
+	if (name)
+		return describe_scene(argv[name], json);
 	char **names;
 	int count;
 	if (aa_scene_list(&names, &count)) {
@@ -117,10 +136,55 @@ int cmd_scenes(int argc, char **argv)
 	return AA_EXIT_OK;
 }
 
+/* Keeps the methods named on the command line, in the registry's order; NULL after saying which name is
+ * not a method. */
+static json_t *named_methods(json_t *all, int argc, char **argv)
+{
+	json_t *kept = json_array();
+	for (int i = 1; i < argc; i++) {
+		if (argv[i][0] == '-')
+			continue;
+		size_t k;
+		json_t *m;
+		bool found = false;
+		json_array_foreach(all, k, m)
+			found = found || strcmp(json_string_value(json_object_get(m, "name")), argv[i]) == 0;
+		if (!found) {
+			fprintf(stderr, "aalab methods: unknown method '%s' (methods:", argv[i]);
+			json_array_foreach(all, k, m)
+				fprintf(stderr, "%s %s", k ? "," : "", json_string_value(json_object_get(m, "name")));
+			fputs(")\n", stderr);
+			json_decref(kept);
+			return NULL;
+		}
+	}
+	size_t k;
+	json_t *m;
+	json_array_foreach(all, k, m) {
+		bool named = false;
+		for (int i = 1; i < argc; i++)
+			named = named || (argv[i][0] != '-' && strcmp(json_string_value(json_object_get(m, "name")), argv[i]) == 0);
+		if (named)
+			json_array_append(kept, m);
+	}
+	return kept;
+}
+
 int cmd_methods(int argc, char **argv)
 {
+	bool json;
+	int first, status = aa_list_args("methods", AA_METHODS_USAGE, argc, argv, argc, &json, &first);
+	if (status)
+		return status;
 	json_t *arr = aa_methods_describe();
-	if (want_json(argc, argv)) {
+	if (first) {
+		json_t *kept = named_methods(arr, argc, argv);
+		json_decref(arr);
+		if (!kept)
+			return AA_EXIT_USAGE;
+		arr = kept;
+	}
+	if (json) {
 		json_dumpf(arr, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 		json_decref(arr);

@@ -9,7 +9,10 @@
 
 int cmd_suites(int argc, char **argv)
 {
-	bool json = argc > 1 && !strcmp(argv[1], "--json");
+	bool json;
+	int unused, status = aa_list_args("suites", AA_SUITES_USAGE, argc, argv, 0, &json, &unused);
+	if (status)
+		return status;
 	char **names;
 	int count;
 	if (aa_suite_list(&names, &count)) {

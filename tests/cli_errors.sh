@@ -33,8 +33,20 @@ expect_status 0 "run --help" -- "$AALAB" run --help
 expect_status 0 "methods" -- "$AALAB" methods
 grep -q "ssaa" "$TMP/out" && pass "methods lists ssaa" || fail "methods does not list ssaa"
 grep -q "4, 9, 16, 25, 36, 49, 64" "$TMP/out" && pass "methods lists valid values" || fail "methods lacks valid values"
+expect_status 0 "methods fxaa taa: only the methods named" -- "$AALAB" methods fxaa taa
+[ "$(grep -c '^[a-z]' "$TMP/out")" -eq 2 ] && grep -q "^fxaa$" "$TMP/out" && grep -q "^taa$" "$TMP/out" &&
+	pass "lists fxaa and taa alone" || fail "methods fxaa taa: $(grep '^[a-z]' "$TMP/out" | tr '\n' ' ')"
+expect_status 2 "methods of an unknown name" -- "$AALAB" methods fxaa nosuch
+expect_stderr "^aalab methods: unknown method 'nosuch' \(methods: none, ssaa, " "names it and lists the methods"
 expect_status 0 "scenes" -- "$AALAB" scenes
 for s in thin-wires hard-edges horizon moving-sphere; do
 	grep -q "^$s " "$TMP/out" && pass "scenes lists $s" || fail "scenes does not list $s"
 done
+# an unknown option or a second name is an error (they were ignored: exit 0 and the whole list)
+for cmd in scenes methods suites; do
+	expect_status 2 "$cmd --bogus" -- "$AALAB" $cmd --bogus
+	expect_stderr "^aalab $cmd: unknown option '--bogus'" "names the option"
+done
+expect_status 2 "scenes with two names" -- "$AALAB" scenes thin-wires hard-edges
+expect_stderr "^aalab scenes: unexpected argument 'hard-edges'" "names the extra argument"
 finish
