@@ -73,6 +73,10 @@ int main(int argc, char **argv)
 					printf("usage: aalab %s\n\n%s\n", commands[i].usage, commands[i].summary);
 				return AA_EXIT_OK;
 			}
+			/* getopt names argv[0] in its messages: "aalab run: unrecognized option", as our own say */
+			char name[64];
+			snprintf(name, sizeof name, "aalab %s", commands[i].name);
+			argv[1] = name;
 			return commands[i].exec(argc - 1, argv + 1);
 		}
 	fprintf(stderr, "aalab: unknown command '%s'\n", argv[1]);
