@@ -70,8 +70,16 @@ static int read_config(int argc, char **argv, struct config *cfg, char *err, siz
 		}
 		if (!strcmp(a, "--check"))
 			continue;
-		if (strncmp(a, "--", 2) || i + 1 >= argc) {
-			snprintf(err, err_size, "unexpected argument '%s' (options take a value: --socket PATH)", a);
+		if (strncmp(a, "--", 2)) {
+			snprintf(err, err_size, "unexpected argument '%s' (options start with --, e.g. --socket PATH)", a);
+			return -1;
+		}
+		if (strcmp(a, "--config") && !config_has_key(a + 2)) {
+			snprintf(err, err_size, "unknown option '%s'", a);
+			return -1;
+		}
+		if (i + 1 >= argc) {
+			snprintf(err, err_size, "option '%s' needs a value", a);
 			return -1;
 		}
 		if (strcmp(a, "--config") && config_set(cfg, a + 2, argv[i + 1], err, err_size))

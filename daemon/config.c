@@ -77,6 +77,14 @@ static const struct key keys[] = {
 };
 
 /* Sets one option by name; used by the config file and by the command line. */
+bool config_has_key(const char *name)
+{
+	for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+		if (strcmp(keys[i].name, name) == 0)
+			return true;
+	return false;
+}
+
 int config_set(struct config *c, const char *name, const char *value, char *err, size_t err_size)
 {
 	for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {

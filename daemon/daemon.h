@@ -51,6 +51,7 @@ int config_load(struct config *c, const char *path, char *err, size_t err_size);
 /* Applies the reloadable settings (limits, timeouts, retention, cache budget) of `from` to `to`. */
 void config_apply_reload(struct config *to, const struct config *from);
 int config_set(struct config *c, const char *name, const char *value, char *err, size_t err_size);
+bool config_has_key(const char *name); /* a key of the file, and so an option --KEY VALUE */
 
 enum conn_kind { CONN_PROTOCOL, CONN_HTTP };
 

@@ -44,6 +44,13 @@ try:
     check(rc != 0 and "chmod 600" in out, "--check: a token file its group can read is not ok")
     rc, out = aalabd_check("--http", "127.0.0.1:notaport")
     check(rc != 0 and "http" in out, "--check: a bad HTTP address is not ok")
+    # options: an unknown one, one without its value and a stray word each say which (they all once said
+    # "unexpected argument ... (options take a value)")
+    for args, said in ((["--bogus"], "unknown option '--bogus'"), (["--bogus", "1"], "unknown option '--bogus'"),
+                       (["--socket"], "option '--socket' needs a value"), (["foo"], "unexpected argument 'foo'")):
+        r = subprocess.run([AALABD, "--check"] + args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        rc, out = r.returncode, r.stdout.decode()
+        check(rc == 2 and said in out, "aalabd %s: exit 2, %s (%d: %s)" % (" ".join(args), said, rc, out.strip()[:80]))
     rc, out = aalabd_check("--device", "no-such-gpu-here")
     check(rc != 0 and "device" in out, "--check: a device that is not there is not ok (%s)" % out.strip()[:80])
     r = subprocess.run([AALABD, "--socket", os.path.join(tmp, "c.sock"), "--state-dir",
