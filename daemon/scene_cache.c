@@ -1,5 +1,6 @@
 /* The scene cache: scenes loaded by the GPU worker, kept within a byte budget (aa_scene_bytes), the least
- * recently used dropped first. An entry is reloaded when its file's size or modification time changed. */
+ * recently used dropped first. An entry is reloaded when the size or modification time of its file, or of
+ * any file its load read (meshes, their buffers, textures: aa_scene_sources_changed), changed. */
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,7 +106,7 @@ const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, 
 	while (e && strcmp(e->file, file) != 0)
 		e = e->next;
 	if (e && e->size == st.st_size && e->mtime.tv_sec == st.st_mtim.tv_sec &&
-	    e->mtime.tv_nsec == st.st_mtim.tv_nsec) {
+	    e->mtime.tv_nsec == st.st_mtim.tv_nsec && !aa_scene_sources_changed(e->scene)) {
 		c->hits++;
 		unlink_entry(c, e);
 		push_front(c, e);

@@ -85,6 +85,7 @@ int aa_resolve_beside(const char *model_path, const char *base_dir, const char *
 	if (strlen(real_file) >= size)
 		return aa_error_set(err, AA_ERR_INVALID, "", "path too long: '%.200s'", uri);
 	memcpy(out, real_file, strlen(real_file) + 1);
+	aa_scene_source_read(out);
 	return 0;
 }
 

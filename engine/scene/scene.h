@@ -7,6 +7,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <time.h>
 
 #include "../error.h"
 #include "../mat4.h"
@@ -251,6 +252,13 @@ struct aa_camera_path {
 	float catmull_alpha;    /* keyframes: 0.5 centripetal (default), 0 uniform Catmull-Rom */
 };
 
+/* A file a scene's load read, as it was then (scene_sources.c). */
+struct aa_scene_source {
+	char *path;             /* resolved: no symbolic links */
+	int64_t size;
+	struct timespec mtime;
+};
+
 struct aa_scene {
 	uint64_t uid;           /* unique per loaded scene in this process: the key of GPU caches */
 	char name[AA_NAME_MAX];
@@ -272,7 +280,18 @@ struct aa_scene {
 	int warning_count;      /* kept; more than AA_SCENE_MAX_WARNINGS are counted in warnings_dropped */
 	int warnings_dropped;
 	char warnings[AA_SCENE_MAX_WARNINGS][256];
+	/* Every file the load read besides `file`, for caches of loaded scenes (scene_sources.c) */
+	struct aa_scene_source *sources; int source_count;
+	bool sources_unknown;   /* one could not be recorded: treat the scene as changed */
 };
+
+/* scene_sources.c: while a load runs on this thread, collect into `scene` (NULL: stop) the files that the
+ * resolvers report with aa_scene_source_read. aa_scene_sources_changed: whether any of them is gone or
+ * has another size or modification time now. */
+void aa_scene_sources_collect(struct aa_scene *scene);
+void aa_scene_source_read(const char *path);
+bool aa_scene_sources_changed(const struct aa_scene *scene);
+void aa_scene_sources_free(struct aa_scene *scene);
 
 /* Finds a scene by name ("thin-wires") or path ("my/scene.json"). Names are looked up in, in order:
  * $AALAB_SCENE_DIR, the build tree's scenes/ (AA_SOURCE_SCENE_DIR), the installed pkgdatadir/scenes

@@ -549,5 +549,6 @@ int sj_resolve_file(struct sj *s, const char *base_dir, const char *rel, char *o
 	if (strlen(real_file) >= size)
 		return sj_fail(s, AA_ERR_INVALID, "file path too long ('%s')", rel);
 	memcpy(out, real_file, strlen(real_file) + 1);
+	aa_scene_source_read(out);
 	return 0;
 }

@@ -38,6 +38,7 @@ void aa_scene_free(struct aa_scene *scene)
 	free(scene->lights);
 	free(scene->paths);
 	free(scene->rigs);
+	aa_scene_sources_free(scene);
 	free(scene);
 }
 
@@ -678,7 +679,9 @@ static int load_json(json_t *root, const char *display, const char *base_dir, co
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
 	}
 	snprintf(L.sc->file, sizeof L.sc->file, "%s", file ? file : "");
+	aa_scene_sources_collect(L.sc);
 	int rc = load_root(&L, root, stem);
+	aa_scene_sources_collect(NULL);
 	json_decref(root);
 	free(L.named_mesh);
 	if (rc) {

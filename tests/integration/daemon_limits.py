@@ -2,6 +2,7 @@
 """aalabd's limits with clear errors: max-connections, idle and request timeouts, retention of finished
 jobs by count, and the scene cache (a changed scene file is loaded again)."""
 import os
+import re
 import shutil
 import socket
 import sys
@@ -69,6 +70,40 @@ try:
     wait_state(c, j, ["done", "failed"])
     metrics = http_get(d.http_port, "/metrics")[2].decode()
     check("aalab_scene_cache_reloads_total 1\n" in metrics, "a changed scene file is loaded again")
+
+    # and when a file the scene's load read changes: its mesh, its texture (only the scene file was
+    # checked, and jobs rendered the old mesh and texture)
+    os.makedirs(os.path.join(scenes, "cached"))
+    with open(os.path.join(scenes, "cached", "tri.obj"), "w") as f:
+        f.write("v -1 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n")
+    shutil.copy(os.path.join(scenes, "assets", "tiles.png"), os.path.join(scenes, "cached", "tex.png"))
+    with open(os.path.join(scenes, "cached.json"), "w") as f:
+        f.write('''{"name": "cached", "background": "#202020", "ambient": "#FFFFFF",
+ "textures": {"t": {"file": "cached/tex.png"}},
+ "materials": {"m": {"color": "#FFFFFF", "specular": 0}, "tm": {"texture": "t", "specular": 0}},
+ "objects": [{"name": "tri", "mesh": {"type": "file", "path": "cached/tri.obj"}, "material": "m"},
+             {"name": "quad", "mesh": {"type": "plane", "size": 1}, "material": "tm", "position": [2, 0.5, 0],
+              "rotation": [90, 0, 0]}],
+ "camera": {"position": [0.5, 0.7, 4], "target": [0.5, 0.7, 0], "fov": 50}}''')
+
+    def frame_of_job():
+        j = c.request({"op": "submit", "job": {"scene": "cached", "methods": ["none"], "frames": 1, "size": "64x36",
+                                               "reference": {"samples": 4}}})["job"]
+        check(wait_state(c, j, ["done", "failed"])["state"] == "done", "a job on the scene with files runs")
+        return http_get(d.http_port, "/v1/jobs/%s/frames/none/0.png" % j)[2]
+
+    def reloads():
+        text = http_get(d.http_port, "/metrics")[2].decode()
+        return int(re.search(r"^aalab_scene_cache_reloads_total (\d+)$", text, re.M).group(1))
+
+    first, before = frame_of_job(), reloads()
+    check(frame_of_job() == first and reloads() == before, "nothing changed: the cached scene serves, the same frame")
+    with open(os.path.join(scenes, "cached", "tri.obj"), "w") as f:
+        f.write("v -1 0 0\nv 1 0 0\nv 0.6 0.4 0\nf 1 2 3\n")
+    moved = frame_of_job()
+    check(reloads() == before + 1 and moved != first, "a changed mesh file is loaded again, and the frame shows it")
+    shutil.copy(os.path.join(scenes, "assets", "chainlink.png"), os.path.join(scenes, "cached", "tex.png"))
+    check(frame_of_job() != moved and reloads() == before + 2, "a changed texture file is loaded again, and shows")
     c.close()
     check(d.stop() == 0, "aalabd exits 0")
 except Exception as e:

@@ -404,6 +404,39 @@ static void test_obj_material(void **state)
 	aa_scene_free(sc);
 }
 
+static bool has_source(const struct aa_scene *sc, const char *name)
+{
+	for (int i = 0; i < sc->source_count; i++) {
+		const char *slash = strrchr(sc->sources[i].path, '/');
+		if (strcmp(slash ? slash + 1 : sc->sources[i].path, name) == 0)
+			return true;
+	}
+	return false;
+}
+
+/* The files a load read, for the daemon's scene cache (scene_sources.c): the mesh, its .mtl and the map
+ * the .mtl names, each once; unchanged right after the load, changed when one's time differs. */
+static void test_sources(void **state)
+{
+	(void)state;
+	struct aa_scene *sc = load_ok("material.obj", "", "");
+	assert_true(has_source(sc, "material.obj"));
+	assert_true(has_source(sc, "material.mtl"));
+	assert_true(has_source(sc, "quadrants.png"));
+	assert_int_equal(sc->source_count, 3);
+	assert_false(sc->sources_unknown);
+	assert_false(aa_scene_sources_changed(sc));
+	sc->sources[2].mtime.tv_nsec ^= 1; /* as if that file had been written since */
+	assert_true(aa_scene_sources_changed(sc));
+	aa_scene_free(sc);
+	/* outside a load nothing is collected */
+	aa_scene_source_read("/etc/hostname");
+	sc = load_ok("base-color.gltf", "", ""); /* its buffers and images are data: URIs */
+	assert_int_equal(sc->source_count, 1);
+	assert_true(has_source(sc, "base-color.gltf"));
+	aa_scene_free(sc);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -420,6 +453,7 @@ int main(void)
 		cmocka_unit_test(test_animation_errors),
 		cmocka_unit_test(test_warnings),
 		cmocka_unit_test(test_obj_material),
+		cmocka_unit_test(test_sources),
 	};
 	return cmocka_run_group_tests(tests, setup, NULL);
 }
