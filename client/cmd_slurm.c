@@ -124,9 +124,10 @@ static char *shards_script(const struct slurm_options *so)
 	common_lines(o, so);
 	if (so->gres)
 		fprintf(o, "#SBATCH --gres=%s\n", so->gres);
+	/* without --quiet: the shard's log (logs/shard-I.log) shows its progress, a line per tenth */
 	fprintf(o, "set -eu\n"
 		"exec '%s' run '%s/job.json' --shard \"$SLURM_ARRAY_TASK_ID/%d\" --out \"%s/shards/$SLURM_ARRAY_TASK_ID\" \\\n"
-		"\t--force --local --quiet\n", so->aalab, so->dir, so->shards, so->dir);
+		"\t--force --local\n", so->aalab, so->dir, so->shards, so->dir);
 	fclose(o);
 	return text;
 }
