@@ -14,8 +14,9 @@ static const struct aa_cmd_entry commands[] = {
 	 "usage: aalab " AA_SCENES_USAGE "\n\n"
 	 "Lists the scenes that --scene can name (from their JSON alone: no mesh is loaded), each with its\n"
 	 "objects, camera paths and description. With a NAME or a scene file, loads that scene and describes\n"
-	 "it: triangles, objects, materials, textures, paths, the animations of its mesh files and what loading\n"
-	 "dropped (warnings). --json prints the same as JSON.\n"},
+	 "it: triangles, objects, materials, textures, paths, the animations of its mesh files, the files it\n"
+	 "reads (meshes, what they name, textures) and what loading dropped (warnings). --json prints the same\n"
+	 "as JSON.\n"},
 	{"suites", AA_SUITES_USAGE, "list the suites that 'aalab run SUITE' finds by name", cmd_suites, NULL},
 	{"methods", AA_METHODS_USAGE, "list the AA methods with their parameters, defaults and valid values",
 	 cmd_methods,

@@ -46,7 +46,10 @@ static int describe_scene(const char *name, bool json)
 	json_t *o = json_pack("{ss ss ss sI si si si}", "name", s->name, "file", file, "description", s->description,
 			      "triangles", (json_int_t)aa_scene_triangle_count(s), "objects", s->model_count,
 			      "materials", s->material_count, "textures", s->texture_count);
-	json_t *paths = json_array(), *clips = json_array(), *warnings = json_array();
+	json_t *paths = json_array(), *clips = json_array(), *warnings = json_array(), *files = json_array();
+	for (int i = 0; i < s->source_count; i++)
+		json_array_append_new(files, json_pack("{ss sI}", "path", s->sources[i].path, "bytes",
+						       (json_int_t)s->sources[i].size));
 	for (int p = 0; p < s->path_count; p++)
 		json_array_append_new(paths, json_string(s->paths[p].name));
 	for (int r = 0; r < s->rig_count; r++)
@@ -58,6 +61,7 @@ static int describe_scene(const char *name, bool json)
 	json_object_set_new(o, "paths", paths);
 	json_object_set_new(o, "animations", clips);
 	json_object_set_new(o, "warnings", warnings);
+	json_object_set_new(o, "files", files);
 	if (json) {
 		json_dumpf(o, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
@@ -74,6 +78,9 @@ static int describe_scene(const char *name, bool json)
 			for (int c = 0; c < s->rigs[r].clip_count; c++)
 				printf("  animation '%s' of %s: %.3f s\n", s->rigs[r].clips[c].name, s->rigs[r].source,
 				       s->rigs[r].clips[c].duration);
+		/* what aalabd's scene cache watches besides the scene file (a change to any reloads it) */
+		for (int i = 0; i < s->source_count; i++)
+			printf("  reads %s (%lld bytes)\n", s->sources[i].path, (long long)s->sources[i].size);
 		for (int w = 0; w < s->warning_count; w++)
 			printf("  warning: %s\n", s->warnings[w]);
 		if (s->warnings_dropped)

@@ -83,6 +83,9 @@ expect_stderr "mesh file 'broken-truncated.glb': truncated" "scenes NAME names t
 s=$(scene skin.gltf)
 expect_status 0 "scenes FILE shows a file's animations" -- "$AALAB" scenes "$s"
 grep -q "animation 'bend' of skin.gltf: 1.000 s" "$TMP/out" && pass "scenes FILE lists the clip" || fail "no clip: $(cat "$TMP/out")"
+expect_status 0 "scenes NAME with an OBJ mesh" -- "$AALAB" scenes hard-edges
+grep -Eq "^  reads /.*/assets/torus\.obj \([0-9]+ bytes\)$" "$TMP/out" && pass "shows the files it reads (what aalabd's cache watches)" ||
+	fail "no files read: $(cat "$TMP/out")"
 ! grep -q '^ *$' "$TMP/out" && pass "a scene without a description gets no blank line" || fail "blank line: $(cat "$TMP/out")"
 printf '{"objects": [{"mesh": "cube"}], "camera": {"position": [0, 0, 5], "target": [0, 0, 0]}}\n' >"$TMP/list/plain.json"
 expect_status 0 "scenes lists one without a description" -- env AALAB_SCENE_DIR="$TMP/list" "$AALAB" scenes
