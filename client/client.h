@@ -70,6 +70,9 @@ json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *
 /* Prints "aalab CMD: path: message" to stderr, naming the field once: messages that already name it (a
  * scene file's "file: path: what is wrong") are printed as they are. */
 void aa_print_error(const char *cmd, const struct aa_error *err);
+/* Whether message names path already: it starts with "path:" or holds ": path:" (or path is empty).
+ * The daemon's errors (replies, a failed job's event) are printed by the same rule. */
+bool aa_error_names_path(const char *path, const char *message);
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
  * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends

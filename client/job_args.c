@@ -128,14 +128,17 @@ json_t *aa_job_load_file(const char *cmd, const char *path)
 	return job;
 }
 
+bool aa_error_names_path(const char *path, const char *message)
+{
+	char inside[300];
+	size_t len = strlen(path);
+	snprintf(inside, sizeof inside, ": %s:", path);
+	return !len || (strncmp(message, path, len) == 0 && message[len] == ':') || strstr(message, inside);
+}
+
 void aa_print_error(const char *cmd, const struct aa_error *err)
 {
-	/* named already: "path: ..." or "...: path: ..." (a scene file's "file: path: what") */
-	char inside[300];
-	size_t len = strlen(err->path);
-	snprintf(inside, sizeof inside, ": %s:", err->path);
-	bool named = !len || (strncmp(err->message, err->path, len) == 0 && err->message[len] == ':') ||
-		     strstr(err->message, inside);
+	bool named = aa_error_names_path(err->path, err->message);
 	fprintf(stderr, "aalab %s: %s%s%s\n", cmd, named ? "" : err->path, named ? "" : ": ", err->message);
 }
 

@@ -2,6 +2,10 @@
 # The client's service commands against a real aalabd: submit, watch, status, list, cancel, get, with
 # --connect and --json; `aalab run` uses the daemon when one answers and runs in-process with --local.
 . "$(dirname "$0")/../lib.sh"
+# the daemon's scenes: the shipped ones and one whose mesh file is missing (it fails when it runs)
+cp -r "$AALAB_SCENE_DIR" "$TMP/scenes" && AALAB_SCENE_DIR="$TMP/scenes"
+printf '{"objects": [{"mesh": {"type": "file", "path": "missing.obj"}}], "camera": {"position": [0, 0, 5], "target": [0, 0, 0]}}\n' \
+	>"$TMP/scenes/lost-mesh.json"
 start_daemon
 C="--connect unix:$sock"
 job="--scene thin-wires --methods none,ssaa:4 --frames 2 --size 64x36 --reference-samples 4"
@@ -38,6 +42,14 @@ expect_status 0 "get --file results.json" -- "$AALAB" get "$id" --file results.j
 cmp -s "$TMP/out" "$TMP/got/results.json" && pass "get --file prints the file" || fail "get --file differs"
 expect_status 2 "status of an unknown job" -- "$AALAB" status 999999 $C
 expect_stderr "aalab status: job: no job '999999'" "the error names the field"
+# a job that fails when it runs: its error names the field once (it said "objects[0].mesh.path: FILE:
+# objects[0].mesh.path: ..."), in submit --watch and in run through the daemon
+for cmd in "submit --watch" "run --out $TMP/lost"; do
+	expect_status 1 "$cmd of a scene whose mesh file is missing" -- "$AALAB" $cmd --scene lost-mesh --frames 1 --size 32x18 \
+		--reference-samples 2 --methods none $C
+	expect_stderr "job [0-9]+ failed: [^ ]*lost-mesh.json: objects\[0\]\.mesh\.path: file 'missing.obj' not found" "names the file and the field"
+	[ "$(grep -o 'objects\[0\]\.mesh\.path' "$TMP/err" | wc -l)" -eq 1 ] && pass "the field once" || fail "the field twice: $(cat "$TMP/err")"
+done
 expect_status 2 "submit a bad job" -- "$AALAB" submit --size 0x5 $C
 expect_stderr "aalab submit: job.size: " "the daemon's error names job.size"
 expect_status 1 "no daemon on another socket" -- "$AALAB" list --connect "unix:$TMP/none.sock"
