@@ -74,7 +74,7 @@ int cmd_status(int argc, char **argv)
 			fputc('\n', stdout);
 		} else {
 			json_t *spec = json_object_get(job, "spec"), *e = json_object_get(job, "error");
-			printf("job %s: %s, %lld of %lld frames done\n", json_string_value(json_object_get(job, "id")),
+			printf("job %s: %s, %lld of %lld renders done\n", json_string_value(json_object_get(job, "id")),
 			       json_string_value(json_object_get(job, "state")), json_integer_value(json_object_get(job, "done")),
 			       json_integer_value(json_object_get(job, "total")));
 			if (json_object_get(spec, "cases"))
