@@ -29,6 +29,8 @@ assert ev[0]["seq"] == 4 and ev[-1]["event"] == "job_finished", ev[0]
 ' "$TMP/out" && pass "--after resumes at event 4, as JSON lines" || fail "watch --after --json: $(head -c 300 "$TMP/out")"
 expect_status 0 "status" -- "$AALAB" status "$id" $C
 grep -q "done" "$TMP/out" && grep -q "ssaa:4" "$TMP/out" && pass "status shows done and the summary" || fail "status: $(cat "$TMP/out")"
+grep -q "^job $id: done, 6 of 6 renders done$" "$TMP/out" && pass "and counts renders (2 frames x (reference + 2 methods))" ||
+	fail "status progress line: $(head -1 "$TMP/out")"
 expect_status 0 "status --json" -- "$AALAB" status "$id" --json $C
 /usr/bin/python3 -c 'import json,sys; assert json.load(open(sys.argv[1]))["state"] == "done"' "$TMP/out" && pass "status --json parses" || fail "status --json"
 expect_status 0 "list" -- "$AALAB" list $C
