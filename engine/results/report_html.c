@@ -232,6 +232,37 @@ static void legend(FILE *o, const struct aa_job_result *r)
 }
 
 /* GPU ms (x) against mean PSNR (y): the cost of accuracy at a glance. */
+#define LABEL_CHAR 6.6    /* px per character, the chart's label font (an estimate: SVG text has no metrics) */
+
+/* Labels are ordered by height and each moves down a line at a time until it overlaps none above it:
+ * methods of about the same cost and PSNR (fxaa and fxaa-cs, say) once printed their names over each
+ * other. */
+void aa_report_spread_labels(struct aa_point_label *l, int n)
+{
+	int order[AA_MAX_METHODS];
+	for (int i = 0; i < n; i++)
+		order[i] = i;
+	for (int i = 1; i < n; i++) /* by height, then by input order: stable */
+		for (int j = i; j > 0 && l[order[j]].y < l[order[j - 1]].y; j--) {
+			int t = order[j];
+			order[j] = order[j - 1];
+			order[j - 1] = t;
+		}
+	for (int k = 1; k < n; k++) {
+		struct aa_point_label *a = &l[order[k]];
+		for (bool moved = true; moved;) {
+			moved = false;
+			for (int m = 0; m < k; m++) {
+				const struct aa_point_label *b = &l[order[m]];
+				if (a->x0 < b->x1 && b->x0 < a->x1 && fabs(a->y - b->y) < AA_LABEL_LINE) {
+					a->y = b->y + AA_LABEL_LINE;
+					moved = true;
+				}
+			}
+		}
+	}
+}
+
 static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum)
 {
 	double xmax = 0, ylo = INFINITY, yhi = -INFINITY;
@@ -264,12 +295,25 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 	fputs("<figure>\n", o);
 	chart_begin(&c, "GPU time per frame against mean PSNR, one point per method", xstep, ystep,
 		    "GPU ms per frame (median, bar p10-p90)", "PSNR dB (mean; higher is better)");
-	for (int i = 0; i < r->method_count; i++) {
+	struct aa_point_label labels[AA_MAX_METHODS];
+	int plotted[AA_MAX_METHODS], n = 0;
+	for (int i = 0; i < r->method_count && n < AA_MAX_METHODS; i++) {
 		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
 		if (!isfinite(sum[i].gpu_ms_median) || !(psnr == INFINITY || isfinite(psnr)))
 			continue;
 		const double x = cx(&c, sum[i].gpu_ms_median), y = cy(&c, psnr);
 		const bool right = x > CW - MR - 170; /* keep labels inside the chart */
+		const double w = LABEL_CHAR * (double)strlen(r->methods[i].label);
+		const double lx = right ? x - 9 : x + 9;
+		labels[n] = (struct aa_point_label){.x = lx, .y = y - 7, .x0 = right ? lx - w : lx, .x1 = right ? lx : lx + w,
+						  .end = right};
+		plotted[n++] = i;
+	}
+	aa_report_spread_labels(labels, n);
+	for (int k = 0; k < n; k++) {
+		const int i = plotted[k];
+		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
+		const double x = cx(&c, sum[i].gpu_ms_median), y = cy(&c, psnr);
 		/* the time's spread over every timed render: an error bar from p10 to p90 */
 		if (isfinite(sum[i].gpu_ms.p10) && isfinite(sum[i].gpu_ms.p90))
 			fprintf(o, "<path class=\"spread\" stroke=\"%s\" d=\"M%.1f %.1fH%.1fM%.1f %.1fv8M%.1f %.1fv8\"/>\n",
@@ -284,7 +328,7 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 		else
 			fprintf(o, "%.2f dB", sum[i].psnr_mean);
 		fprintf(o, "</title></circle><text class=\"point\" x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">",
-			right ? x - 9 : x + 9, y - 7, right ? "end" : "start");
+			labels[k].x, labels[k].y, labels[k].end ? "end" : "start");
 		esc(o, r->methods[i].label);
 		fputs("</text>\n", o);
 	}

@@ -65,5 +65,13 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
 /* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
 void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
+/* A chart point's label: where it is drawn (x, baseline y; anchored at its right end when `end`) and the
+ * span it takes, x0..x1. aa_report_spread_labels moves labels down until no two overlap (report_html.c). */
+struct aa_point_label {
+	double x, y, x0, x1;
+	bool end;
+};
+#define AA_LABEL_LINE 13.0 /* px between two labels' baselines */
+void aa_report_spread_labels(struct aa_point_label *labels, int n);
 
 #endif

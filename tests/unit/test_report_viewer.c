@@ -398,6 +398,27 @@ static void test_exr_event(void **state)
 	free_result(r);
 }
 
+/* The cost-accuracy chart's labels: two methods at one point (fxaa and fxaa-cs) get a line each, a label
+ * apart from the others keeps its place, and a stack of three ends three lines deep. */
+static void test_spread_labels(void **state)
+{
+	(void)state;
+	struct aa_point_label l[4] = {
+		{.x = 100, .y = 50, .x0 = 100, .x1 = 140},
+		{.x = 102, .y = 51, .x0 = 102, .x1 = 150}, /* on top of the first */
+		{.x = 400, .y = 50, .x0 = 400, .x1 = 430}, /* same height, far away */
+		{.x = 120, .y = 55, .x0 = 120, .x1 = 160}, /* overlaps both of the first two */
+	};
+	aa_report_spread_labels(l, 4);
+	assert_true(l[0].y == 50 && l[2].y == 50);
+	assert_true(l[1].y == 50 + AA_LABEL_LINE);
+	assert_true(l[3].y == 50 + 2 * AA_LABEL_LINE);
+	for (int i = 0; i < 4; i++)
+		for (int j = 0; j < i; j++)
+			if (l[i].x0 < l[j].x1 && l[j].x0 < l[i].x1)
+				assert_true(fabs(l[i].y - l[j].y) >= AA_LABEL_LINE);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -406,6 +427,7 @@ int main(void)
 		cmocka_unit_test(test_viewer_frames),
 		cmocka_unit_test(test_worst_regions),
 		cmocka_unit_test(test_exr_event),
+		cmocka_unit_test(test_spread_labels),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
