@@ -8,6 +8,11 @@ expect_status 2 "negative size" -- "$AALAB" run --size -3x10 --out "$TMP/o" --qu
 expect_stderr "^aalab run: size" "bad size names the size field"
 expect_status 2 "size without x" -- "$AALAB" run --size 640 --out "$TMP/o" --quiet
 expect_stderr "size" "size without x names the size field"
+# an unknown option is named by the command, as our own messages are (getopt once said "run: ...")
+for cmd in run diff compare submit; do
+	expect_status 2 "$cmd --bogus" -- "$AALAB" $cmd --bogus
+	expect_stderr "^aalab $cmd: (unrecognized|unknown or incomplete) option '--bogus'" "aalab $cmd names itself and the option"
+done
 expect_status 2 "unknown method" -- "$AALAB" run --methods fxaa:banana --out "$TMP/o" --quiet
 expect_stderr "methods\[0\]" "unknown method names methods[0]"
 expect_status 2 "bad ssaa samples" -- "$AALAB" run --methods none,ssaa:7 --out "$TMP/o" --quiet
