@@ -70,9 +70,10 @@ json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *
 /* Prints "aalab CMD: path: message" to stderr, naming the field once: messages that already name it (a
  * scene file's "file: path: what is wrong") are printed as they are. */
 void aa_print_error(const char *cmd, const struct aa_error *err);
-/* Whether message names path already: it starts with "path:" or holds ": path:" (or path is empty).
- * The daemon's errors (replies, a failed job's event) are printed by the same rule. */
-bool aa_error_names_path(const char *path, const char *message);
+/* Prints "LEAD path: message" to stderr, or "LEAD message" when the message names the path already (it
+ * starts with "path:" or holds ": path:") or there is none: the rule of aa_print_error, also for the
+ * daemon's errors (replies, a failed job's event). A NULL message prints "error". */
+void aa_print_field_error(const char *lead, const char *path, const char *message);
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
  * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends
@@ -134,8 +135,6 @@ void aa_progress_finish(void);
 /* Progress where stderr is not a terminal (logs, CI, Slurm): "aalab CMD: WHAT D/T (P%)" each time the
  * share done passes another tenth, so a long job says where it is in at most ten lines. */
 void aa_progress_line(const char *cmd, int done, int total, const char *what);
-/* The bar on a terminal, aa_progress_line otherwise. */
-void aa_progress_show(const char *cmd, int done, int total, const char *what);
 
 /* Splits a --methods value into method strings: commas separate methods, except that a "key=value"
  * token without ':' continues the previous method's parameters ("fxaa:preset=12,subpix=0.5,none"). */

@@ -143,37 +143,43 @@ int cmd_scenes(int argc, char **argv)
 	return AA_EXIT_OK;
 }
 
+static bool has_method(json_t *all, const char *name)
+{
+	size_t k;
+	json_t *m;
+	json_array_foreach(all, k, m)
+		if (strcmp(json_string_value(json_object_get(m, "name")), name) == 0)
+			return true;
+	return false;
+}
+
+static bool named_on_line(int argc, char **argv, const char *name)
+{
+	for (int i = 1; i < argc; i++)
+		if (argv[i][0] != '-' && strcmp(argv[i], name) == 0)
+			return true;
+	return false;
+}
+
 /* Keeps the methods named on the command line, in the registry's order; NULL after saying which name is
  * not a method. */
 static json_t *named_methods(json_t *all, int argc, char **argv)
 {
-	json_t *kept = json_array();
-	for (int i = 1; i < argc; i++) {
-		if (argv[i][0] == '-')
-			continue;
-		size_t k;
-		json_t *m;
-		bool found = false;
-		json_array_foreach(all, k, m)
-			found = found || strcmp(json_string_value(json_object_get(m, "name")), argv[i]) == 0;
-		if (!found) {
-			fprintf(stderr, "aalab methods: unknown method '%s' (methods:", argv[i]);
-			json_array_foreach(all, k, m)
-				fprintf(stderr, "%s %s", k ? "," : "", json_string_value(json_object_get(m, "name")));
-			fputs(")\n", stderr);
-			json_decref(kept);
-			return NULL;
-		}
-	}
 	size_t k;
 	json_t *m;
-	json_array_foreach(all, k, m) {
-		bool named = false;
-		for (int i = 1; i < argc; i++)
-			named = named || (argv[i][0] != '-' && strcmp(json_string_value(json_object_get(m, "name")), argv[i]) == 0);
-		if (named)
-			json_array_append(kept, m);
+	for (int i = 1; i < argc; i++) {
+		if (argv[i][0] == '-' || has_method(all, argv[i]))
+			continue;
+		fprintf(stderr, "aalab methods: unknown method '%s' (methods:", argv[i]);
+		json_array_foreach(all, k, m)
+			fprintf(stderr, "%s %s", k ? "," : "", json_string_value(json_object_get(m, "name")));
+		fputs(")\n", stderr);
+		return NULL;
 	}
+	json_t *kept = json_array();
+	json_array_foreach(all, k, m)
+		if (named_on_line(argc, argv, json_string_value(json_object_get(m, "name"))))
+			json_array_append(kept, m);
 	return kept;
 }
 

@@ -75,6 +75,7 @@ struct run_output {
 	const struct aa_job_spec *spec;
 	bool images;
 	bool quiet;
+	bool tty; /* stderr is a terminal: a progress bar, otherwise a line per tenth */
 	volatile int frames_written; /* what Ctrl-C reports as kept */
 	int failed_writes;
 	struct aa_error write_err;
@@ -87,8 +88,12 @@ static int on_event(const struct aa_event *ev, void *user)
 		o->failed_writes++;
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
-	if (ev->type == AA_EVENT_PROGRESS && !o->quiet)
-		aa_progress_show("run", ev->done, ev->total, "rendering");
+	if (ev->type == AA_EVENT_PROGRESS && !o->quiet) {
+		if (o->tty)
+			aa_progress_update(ev->done, ev->total, "rendering");
+		else
+			aa_progress_line("run", ev->done, ev->total, "rendering");
+	}
 	/* a failed image write stops the job: carrying on would lose data silently */
 	return o->failed_writes > 0;
 }
@@ -270,7 +275,7 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames,
-				 .quiet = quiet};
+				 .quiet = quiet, .tty = isatty(STDERR_FILENO)};
 	int frames_total = 0; /* images of every case: each frame's reference and methods */
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;

@@ -104,15 +104,12 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		}
 		if (!strcmp(type, "job_failed") && !json) {
 			json_t *e = json_object_get(ev, "error");
-			const char *path = json_string_value(json_object_get(e, "path"));
-			const char *message = json_string_value(json_object_get(e, "message"));
-			if (!message)
-				message = "error";
-			bool named = !path || aa_error_names_path(path, message);
+			char lead[128];
+			snprintf(lead, sizeof lead, "aalab %s: job %s failed: ", cmd, job);
 			if (tty)
 				aa_progress_finish();
-			fprintf(stderr, "aalab %s: job %s failed: %s%s%s\n", cmd, job, named ? "" : path, named ? "" : ": ",
-				message);
+			aa_print_field_error(lead, json_string_value(json_object_get(e, "path")),
+					     json_string_value(json_object_get(e, "message")));
 		}
 		json_decref(ev);
 	}

@@ -128,18 +128,25 @@ json_t *aa_job_load_file(const char *cmd, const char *path)
 	return job;
 }
 
-bool aa_error_names_path(const char *path, const char *message)
+void aa_print_field_error(const char *lead, const char *path, const char *message)
 {
+	if (!message)
+		message = "error";
+	if (!path)
+		path = "";
+	/* named already: "path: ..." or "...: path: ..." (a scene file's "file: path: what") */
 	char inside[300];
 	size_t len = strlen(path);
 	snprintf(inside, sizeof inside, ": %s:", path);
-	return !len || (strncmp(message, path, len) == 0 && message[len] == ':') || strstr(message, inside);
+	bool named = !len || (strncmp(message, path, len) == 0 && message[len] == ':') || strstr(message, inside);
+	fprintf(stderr, "%s%s%s%s\n", lead, named ? "" : path, named ? "" : ": ", message);
 }
 
 void aa_print_error(const char *cmd, const struct aa_error *err)
 {
-	bool named = aa_error_names_path(err->path, err->message);
-	fprintf(stderr, "aalab %s: %s%s%s\n", cmd, named ? "" : err->path, named ? "" : ": ", err->message);
+	char lead[64];
+	snprintf(lead, sizeof lead, "aalab %s: ", cmd);
+	aa_print_field_error(lead, err->path, err->message);
 }
 
 /* A job file's scene path is relative to the job file, not to where aalab runs: the file is then usable

@@ -242,11 +242,9 @@ int aa_reply_status(const char *cmd, json_t *reply)
 		return AA_EXIT_OK;
 	json_t *e = json_object_get(reply, "error");
 	const char *code = json_string_value(json_object_get(e, "code")), *path = json_string_value(json_object_get(e, "path"));
-	const char *message = json_string_value(json_object_get(e, "message"));
-	if (!message)
-		message = "error";
-	bool named = !path || aa_error_names_path(path, message);
-	fprintf(stderr, "aalab %s: %s%s%s\n", cmd, named ? "" : path, named ? "" : ": ", message);
+	char lead[64];
+	snprintf(lead, sizeof lead, "aalab %s: ", cmd);
+	aa_print_field_error(lead, path, json_string_value(json_object_get(e, "message")));
 	/* the request was at fault: bad input, unknown job, over a limit */
 	static const char *const usage_codes[] = {"invalid", "not_found", "limit", "bad_request", "too_large", NULL};
 	for (int i = 0; code && usage_codes[i]; i++)

@@ -3,7 +3,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "client.h"
 
@@ -134,14 +133,6 @@ void aa_progress_line(const char *cmd, int done, int total, const char *what)
 	progress_tenth = tenth;
 	fprintf(stderr, "aalab %s: %s %d/%d (%d%%)\n", cmd, what, done, total, (int)((long)done * 100 / total));
 	fflush(stderr);
-}
-
-void aa_progress_show(const char *cmd, int done, int total, const char *what)
-{
-	if (isatty(STDERR_FILENO))
-		aa_progress_update(done, total, what);
-	else
-		aa_progress_line(cmd, done, total, what);
 }
 
 void aa_progress_finish(void)

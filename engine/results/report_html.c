@@ -297,6 +297,7 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 		    "GPU ms per frame (median, bar p10-p90)", "PSNR dB (mean; higher is better)");
 	struct aa_point_label labels[AA_MAX_METHODS];
 	int plotted[AA_MAX_METHODS], n = 0;
+	double px[AA_MAX_METHODS], py[AA_MAX_METHODS];
 	for (int i = 0; i < r->method_count && n < AA_MAX_METHODS; i++) {
 		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
 		if (!isfinite(sum[i].gpu_ms_median) || !(psnr == INFINITY || isfinite(psnr)))
@@ -307,13 +308,13 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 		const double lx = right ? x - 9 : x + 9;
 		labels[n] = (struct aa_point_label){.x = lx, .y = y - 7, .x0 = right ? lx - w : lx, .x1 = right ? lx : lx + w,
 						  .end = right};
+		px[n] = x, py[n] = y;
 		plotted[n++] = i;
 	}
 	aa_report_spread_labels(labels, n);
 	for (int k = 0; k < n; k++) {
 		const int i = plotted[k];
-		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
-		const double x = cx(&c, sum[i].gpu_ms_median), y = cy(&c, psnr);
+		const double x = px[k], y = py[k];
 		/* the time's spread over every timed render: an error bar from p10 to p90 */
 		if (isfinite(sum[i].gpu_ms.p10) && isfinite(sum[i].gpu_ms.p90))
 			fprintf(o, "<path class=\"spread\" stroke=\"%s\" d=\"M%.1f %.1fH%.1fM%.1f %.1fv8M%.1f %.1fv8\"/>\n",
