@@ -12,11 +12,13 @@
 #include <string.h>
 #include <time.h>
 
-#include "aa.h"
-#include "engine_internal.h"
-#include "frame_plan.h"
+#include "run/engine.h"
+#include "run/engine_internal.h"
+#include "render/frame_plan.h"
 #include "reference/reference.h"
-#include "renderer.h"
+#include "render/renderer.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 #define MAX_ROUNDS 200
 

@@ -6,7 +6,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "job.h"
+#include "types/job.h"
 
 struct aa_cmd_entry {
 	const char *name;

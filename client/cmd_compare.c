@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "client.h"
-#include "results/compare.h"
+#include "compare/compare.h"
 
 const char aa_compare_help[] =
 	"usage: aalab compare BASE NEW [--fail-if GATE ...] [--json] [--junit FILE] [--markdown FILE]\n"

@@ -5,7 +5,7 @@
 #include <time.h>
 
 #include "client.h"
-#include "farm.h"
+#include "run/farm.h"
 
 static const char list_help[] =
 	"usage: aalab list [--state queued|running|done|failed|cancelled] [--label KEY=VALUE ...] [--suite NAME]\n"

@@ -4,8 +4,9 @@
 #include <string.h>
 
 #include "client.h"
-#include "methods/method.h"
+#include "types/method.h"
 #include "scene/scene.h"
+#include "methods/methods.h"
 
 /* The arguments of a listing command: --json, and at most max_names names (the first is returned in
  * *first, NULL when none). Anything else is a usage error (exit 2): an unknown option was once ignored,

@@ -5,12 +5,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "client.h"
 #include "out_dir.h"
 #include "results/results.h"
-#include "farm.h"
-#include "results/shard_results.h"
+#include "run/farm.h"
+#include "compare/shard_merge.h"
+#include "report/report.h"
 
 const char aa_merge_help[] =
 	"usage: aalab merge --out DIR SHARD_DIR... [--force] [--json] [--quiet]\n"

@@ -9,14 +9,16 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "client.h"
-#include "farm.h"
+#include "run/farm.h"
 #include "methods/user_method.h"
 #include "out_dir.h"
 #include "results/results.h"
-#include "results/shard_results.h"
-#include "shard.h"
+#include "compare/shard_merge.h"
+#include "run/shard.h"
+#include "report/report.h"
+#include "run/job_spec.h"
 
 const char aa_run_help[] =
 	"usage: aalab run [JOB.json|SUITE] [options]\n"

@@ -11,9 +11,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "client.h"
-#include "shard.h"
+#include "run/shard.h"
+#include "run/job_spec.h"
 
 const char aa_slurm_help[] =
 	"usage: aalab slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G]\n"

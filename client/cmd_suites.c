@@ -4,8 +4,9 @@
 #include <string.h>
 
 #include "client.h"
-#include "farm.h"
+#include "run/farm.h"
 #include "methods/user_method.h"
+#include "run/job_spec.h"
 
 int cmd_suites(int argc, char **argv)
 {

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "client.h"
-#include "farm.h"
+#include "run/farm.h"
 
 static int parse_int(const char *cmd, const char *field, const char *text, json_int_t *out)
 {

@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "client.h"
+#include "methods/methods.h"
+#include "results/results.h"
 
 static void format_psnr(double psnr, bool identical, char *out, size_t size)
 {

@@ -9,10 +9,11 @@
 #include <string.h>
 
 #include "daemon.h"
-#include "farm.h"
+#include "run/farm.h"
 #include "farm_routes.h"
 #include "jobs.h"
-#include "results/compare.h"
+#include "compare/compare.h"
+#include "run/job_spec.h"
 
 struct farm_filter {
 	int label_count;

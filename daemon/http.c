@@ -201,7 +201,7 @@ static void job_route(struct daemon *d, char *rest, struct response *r)
 		slash = strchr(name, '/');
 		*slash = 0;
 		char dir[300];
-		aa_results_method_dirname(name, dir, sizeof dir);
+		aa_label_dirname(name, dir, sizeof dir);
 		long n = strtol(slash + 1, NULL, 10);
 		if (strspn(slash + 1, "0123456789") == 0 || strcmp(slash + 1 + strspn(slash + 1, "0123456789"), ".png") ||
 		    n > 99999999) {

@@ -10,10 +10,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "farm.h"
+#include "run/farm.h"
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "results/results.h"
+#include "run/job_spec.h"
 
 const char *job_state_name(enum job_state s)
 {

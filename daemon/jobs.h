@@ -11,7 +11,7 @@
 
 #include <jansson.h>
 
-#include "aa.h"
+#include "run/engine.h"
 
 enum job_state { JOB_QUEUED, JOB_RUNNING, JOB_DONE, JOB_FAILED, JOB_CANCELLED };
 

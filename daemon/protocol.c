@@ -9,10 +9,12 @@
 #include <sys/stat.h>
 
 #include "daemon.h"
-#include "farm.h"
+#include "run/farm.h"
 #include "farm_routes.h"
 #include "jobs.h"
 #include "methods/user_method.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
 {

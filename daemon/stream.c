@@ -80,7 +80,7 @@ int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *o
 			     strcmp(file + digits, linear ? ".rgba16f" : exr ? ".exr" : ".png") == 0;
 		}
 	}
-	if (!ok && !strncmp(inner, "viewer/", 7)) { /* report.html's frame scripts (engine/results/report_viewer.c) */
+	if (!ok && !strncmp(inner, "viewer/", 7)) { /* report.html's frame scripts (engine/report/report_viewer.c) */
 		const size_t digits = strspn(inner + 7, "0123456789");
 		ok = digits >= 4 && digits <= 9 && strcmp(inner + 7 + digits, ".js") == 0;
 	}

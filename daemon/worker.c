@@ -10,12 +10,15 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "farm.h"
+#include "run/farm.h"
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "worker.h"
 #include "loop.h"
 #include "results/results.h"
+#include "methods/methods.h"
+#include "report/report.h"
+#include "run/job_spec.h"
 
 /* The engine side of a job: renders it into its directory and hands each event to a sink, the job's log
  * in this thread or the worker process's pipe to this thread (worker_process.c). */

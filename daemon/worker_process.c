@@ -29,6 +29,7 @@
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
 #include "worker.h"
+#include "run/job_spec.h"
 
 #define LINE_MAX_BYTES (16u << 20) /* the process's lines: events and a summary, far below this */
 #define START_SECONDS 120          /* opening the device */

@@ -9,7 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "../error.h"
+#include "util/error.h"
 
 struct aa_gpu_image;
 

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "gpu.h"
+#include "gpu/gpu.h"
 
 double aa_now_ms(void)
 {

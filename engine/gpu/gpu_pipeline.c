@@ -3,8 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu.h"
-#include "../scene/scene.h"
+#include "gpu/gpu.h"
+#include "scene/scene.h"
 
 static int make_module_code(struct aa_gpu *gpu, const struct aa_shader_code *code, VkShaderModule *out,
 			    struct aa_error *err)

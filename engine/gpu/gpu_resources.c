@@ -2,7 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu.h"
+#include "gpu/gpu.h"
 
 static int find_memory_type(struct aa_gpu *gpu, uint32_t bits, VkMemoryPropertyFlags want)
 {

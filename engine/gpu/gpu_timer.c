@@ -2,7 +2,7 @@
 #include <string.h>
 #include <stdio.h>
 
-#include "gpu.h"
+#include "gpu/gpu.h"
 
 int aa_gpu_timer_create(struct aa_gpu *gpu, struct aa_gpu_timer *t, struct aa_error *err)
 {

@@ -1,7 +1,7 @@
 /* Standard sample locations, from the Vulkan specification's table of standard sample locations. */
 #include <stddef.h>
 
-#include "sample_positions.h"
+#include "gpu/sample_positions.h"
 
 static const float one[1][2] = {{0.5f, 0.5f}};
 static const float two[2][2] = {{0.75f, 0.75f}, {0.25f, 0.25f}};

@@ -3,7 +3,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "gpu.h"
+#include "gpu/gpu.h"
 #include "shader_list.h"
 
 static const struct aa_shader_code shaders[] = {AA_SHADER_ENTRIES};

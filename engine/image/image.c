@@ -1,5 +1,5 @@
 /* CPU image buffers and the sRGB transfer functions used to encode linear renders for display. */
-#include "image.h"
+#include "image/image.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../error.h"
+#include "util/error.h"
 
 /* 8-bit RGBA, sRGB-encoded, straight (not premultiplied) alpha as PNG stores it, rows top to bottom,
  * tightly packed. */

@@ -1,6 +1,6 @@
 /* Image files (image.h): PNG through libpng (png_io.c); every other format through OpenImageIO in
  * aalab-oiio.so (image_io.cc), loaded with dlopen the first time a file is not a PNG. */
-#include "image.h"
+#include "image/image.h"
 
 #include <dlfcn.h>
 #include <errno.h>
@@ -12,8 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "oiio_module.h"
-#include "png_io.h"
+#include "image/oiio_module.h"
+#include "image/png_io.h"
 
 static pthread_mutex_t module_lock = PTHREAD_MUTEX_INITIALIZER;
 static const struct aa_oiio_module *module;

@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 
 extern "C" {
-#include "oiio_module.h"
+#include "image/oiio_module.h"
 }
 
 using OIIO::ImageInput;

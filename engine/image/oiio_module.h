@@ -5,7 +5,7 @@
 #ifndef AA_OIIO_MODULE_H
 #define AA_OIIO_MODULE_H
 
-#include "../error.h"
+#include "util/error.h"
 
 #define AA_OIIO_MODULE_FILE "aalab-oiio.so"
 #define AA_OIIO_MODULE_SYMBOL "aa_oiio_module"

@@ -1,6 +1,6 @@
 /* PNG through libpng (png_io.h). Errors from libpng arrive through a longjmp to the setjmp in each
  * function; everything those functions change after setjmp is volatile or freed by the cleanup there. */
-#include "png_io.h"
+#include "image/png_io.h"
 
 #include <errno.h>
 #include <png.h>

@@ -6,8 +6,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "image.h"
-#include "oiio_module.h"
+#include "image/image.h"
+#include "image/oiio_module.h"
 
 /* True when the file starts with the PNG signature; false for any other content or a read error. */
 bool aa_png_file_is_png(const char *path);

@@ -2,7 +2,8 @@
  * geometry says something about the methods rather than about how each one happened to test alpha. */
 #include <string.h>
 
-#include "method.h"
+#include "types/method.h"
+#include "methods/methods.h"
 
 enum aa_alpha_rule aa_method_alpha_rule(const struct aa_method *m, const struct aa_method_params *p)
 {

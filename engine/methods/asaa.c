@@ -9,10 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../reference/reference.h"
-#include "../renderer.h"
-#include "../temporal/jitter.h"
-#include "method.h"
+#include "reference/reference.h"
+#include "render/renderer.h"
+#include "methods/jitter.h"
+#include "types/method.h"
+#include "util/halton.h"
 
 static const struct aa_param_def asaa_params[] = {
 	{.name = "max_samples", .type = AA_PARAM_INT, .def = 16, .min = 1, .max = 255,

@@ -2,8 +2,8 @@
  * that bench/methods divides every method's own pass time by; not an AA method. */
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 struct aa_method_state {
 	struct aa_renderer *r;

@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 struct aa_method_state {
 	struct aa_renderer *r;

@@ -4,9 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "fxaa.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "methods/fxaa.h"
+#include "types/method.h"
 
 /* FXAA 3.11's quality presets: FXAA_QUALITY__PS steps of FXAA_QUALITY__P0.. pixels. 10-15 "medium
  * dither", 20-29 "less dither", 39 "no dither"; 12 is FXAA 3.11's default. */

@@ -7,7 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "method.h"
+#include "types/method.h"
 
 #define AA_FXAA_PARAM_COUNT 4
 #define AA_FXAA_MAX_STEPS 12

@@ -6,10 +6,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../passes/compute_pass.h"
-#include "../renderer.h"
-#include "fxaa.h"
-#include "method.h"
+#include "gpu/compute_pass.h"
+#include "render/renderer.h"
+#include "methods/fxaa.h"
+#include "types/method.h"
 
 #define TILE 8        /* local size of the per-pixel passes (fxaa_cs_luma.comp, fxaa_cs_classify.comp) */
 

@@ -3,8 +3,8 @@
  * blends each edge pixel with its neighbour across the edge by one shifted bilinear fetch. */
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 struct aa_method_state {
 	struct aa_renderer *r;

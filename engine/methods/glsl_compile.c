@@ -12,8 +12,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../sha256.h"
-#include "glsl_compile.h"
+#include "util/sha256.h"
+#include "methods/glsl_compile.h"
 
 #ifndef AA_GLSLANG
 #define AA_GLSLANG "glslangValidator"

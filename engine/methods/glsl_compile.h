@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../error.h"
+#include "util/error.h"
 
 /* Compiles glsl (size bytes) as a fragment or compute shader. shown_name is the user's file, which
  * compiler messages name: a compile error is AA_ERR_INVALID, "FILE:LINE: message" (up to three errors).

@@ -9,7 +9,8 @@
 #include <string.h>
 #include <strings.h>
 
-#include "method.h"
+#include "types/method.h"
+#include "methods/methods.h"
 
 static bool has_range(const struct aa_param_def *d);
 

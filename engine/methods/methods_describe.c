@@ -5,8 +5,9 @@
 
 #include <jansson.h>
 
-#include "method.h"
-#include "user_method.h"
+#include "types/method.h"
+#include "methods/user_method.h"
+#include "methods/methods.h"
 
 static const char *type_name(enum aa_param_type t)
 {

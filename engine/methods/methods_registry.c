@@ -2,7 +2,7 @@
  * not listed: each is made from its method file, and `aalab methods` describes `user` after these. */
 #include <string.h>
 
-#include "method.h"
+#include "types/method.h"
 
 extern const struct aa_method aa_method_none;
 extern const struct aa_method aa_method_ssaa;

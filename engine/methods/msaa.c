@@ -8,10 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../gpu/sample_positions.h"
-#include "../reference/sample_accumulator.h"
-#include "../renderer.h"
-#include "method.h"
+#include "gpu/sample_positions.h"
+#include "reference/sample_accumulator.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 static const int msaa_sample_counts[] = {2, 4, 8, 0};
 static const char *const msaa_paths[] = {"auto", "hardware", "virtual", NULL};

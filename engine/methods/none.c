@@ -1,8 +1,8 @@
 /* `none`: one sample per pixel at the pixel centre, no anti-aliasing: the baseline every method beats. */
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 struct aa_method_state {
 	struct aa_renderer *r;

@@ -16,11 +16,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../gpu/sample_positions.h"
-#include "../passes/compute_pass.h"
-#include "../renderer.h"
-#include "method.h"
-#include "rsaa_table.h"
+#include "gpu/sample_positions.h"
+#include "gpu/compute_pass.h"
+#include "render/renderer.h"
+#include "types/method.h"
+#include "methods/rsaa_table.h"
 
 static const int rsaa_sample_counts[] = {4, 8, 0};
 static const char *const rsaa_similarities[] = {"sadp", "depth", NULL};

@@ -6,8 +6,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "../gpu/sample_positions.h"
-#include "rsaa_table.h"
+#include "gpu/sample_positions.h"
+#include "methods/rsaa_table.h"
 
 /* ---------------------------------------------------------------- deterministic random numbers */
 

@@ -13,11 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../passes/compute_pass.h"
-#include "../renderer.h"
-#include "method.h"
-#include "smaa.h"
-#include "smaa_textures.h"
+#include "gpu/compute_pass.h"
+#include "render/renderer.h"
+#include "types/method.h"
+#include "methods/smaa.h"
+#include "methods/smaa_textures.h"
 
 enum { PRESET_LOW, PRESET_MEDIUM, PRESET_HIGH, PRESET_ULTRA };
 enum { EDGE_LUMA, EDGE_COLOR, EDGE_DEPTH };

@@ -3,7 +3,7 @@
 #ifndef AA_SMAA_H
 #define AA_SMAA_H
 
-#include "method.h"
+#include "types/method.h"
 
 struct aa_smaa_settings {
 	float threshold;       /* the edge pass's: the preset's or `threshold`, a tenth of it for depth edges */

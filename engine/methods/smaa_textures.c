@@ -15,7 +15,7 @@
 #include <stdbool.h>
 #include <string.h>
 
-#include "smaa_textures.h"
+#include "methods/smaa_textures.h"
 
 struct pair {
 	double a, b; /* R: coverage on the current pixel's side; G: on the other side */

@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 static const int ssaa_sample_counts[] = {4, 9, 16, 25, 36, 49, 64, 0};
 

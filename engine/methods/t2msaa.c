@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../gpu/sample_positions.h"
-#include "../passes/compute_pass.h"
-#include "../renderer.h"
-#include "../temporal/jitter.h"
-#include "method.h"
+#include "gpu/sample_positions.h"
+#include "gpu/compute_pass.h"
+#include "render/renderer.h"
+#include "methods/jitter.h"
+#include "types/method.h"
 
 static const char *const t2msaa_offsets[] = {"0.25", "0.1875", "0.125", NULL};
 static const char *const t2msaa_blur_velocities[] = {"fraction", "uv", NULL};

@@ -5,7 +5,7 @@
  * (shaders/taa_converge.glsl); preset=seed001 runs the seed's algorithm as it was. */
 #include <stdio.h>
 
-#include "taa_impl.h"
+#include "methods/taa_impl.h"
 
 static const int taa_jitter_lengths[] = {8, 16, 0};
 static const char *const taa_sharpen_kinds[] = {"off", "original", "normalized", NULL};

@@ -4,9 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../passes/compute_pass.h"
-#include "../temporal/jitter.h"
-#include "taa_impl.h"
+#include "gpu/compute_pass.h"
+#include "methods/jitter.h"
+#include "methods/taa_impl.h"
 
 struct aa_method_state {
 	struct aa_renderer *r;

@@ -4,8 +4,8 @@
 #ifndef AA_TAA_IMPL_H
 #define AA_TAA_IMPL_H
 
-#include "../renderer.h"
-#include "method.h"
+#include "render/renderer.h"
+#include "types/method.h"
 
 enum aa_taa_sharpen { AA_TAA_SHARPEN_OFF, AA_TAA_SHARPEN_ORIGINAL, AA_TAA_SHARPEN_NORMALIZED };
 enum aa_taa_preset { AA_TAA_PRESET_CONVERGE, AA_TAA_PRESET_SEED001 };

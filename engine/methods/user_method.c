@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../passes/compute_pass.h"
-#include "../renderer.h"
-#include "../temporal/jitter.h"
-#include "user_method.h"
+#include "gpu/compute_pass.h"
+#include "render/renderer.h"
+#include "methods/jitter.h"
+#include "methods/user_method.h"
 
 /* std430 layout of AaPush in the prelude (aa_user_pass_glsl): 44 bytes, then one 32-bit word a parameter */
 struct user_push {

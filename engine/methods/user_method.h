@@ -10,7 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "method.h"
+#include "types/method.h"
 
 #define AA_USER_MAX_PASSES 8
 #define AA_USER_MAX_READS 8           /* a fragment pass binds AA_PASS_MAX_SOURCES; a compute pass its reads

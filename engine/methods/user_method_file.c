@@ -10,11 +10,12 @@
 #include <jansson.h>
 #include <vulkan/vulkan.h>
 
-#include "../gpu/gpu.h"
-#include "../sha256.h"
-#include "../job_parse.h"
-#include "glsl_compile.h"
-#include "user_method.h"
+#include "gpu/gpu.h"
+#include "util/sha256.h"
+#include "util/json_text.h"
+#include "methods/glsl_compile.h"
+#include "methods/user_method.h"
+#include "methods/methods.h"
 
 /* ---------------------------------------------------------------- tables */
 
@@ -95,7 +96,7 @@ static int check_keys(struct ctx *c, const json_t *obj, const char *field, const
 		char list[256] = "", k[48];
 		for (i = 0; valid[i]; i++)
 			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", valid[i]);
-		return bad(c->err, c->path, c->file, field, "unknown key \"%s\"; valid keys: %s", aa_job_shown_text(key, k, sizeof k),
+		return bad(c->err, c->path, c->file, field, "unknown key \"%s\"; valid keys: %s", aa_shown_text(key, k, sizeof k),
 			   list);
 	}
 	return 0;
@@ -105,7 +106,7 @@ static int check_keys(struct ctx *c, const json_t *obj, const char *field, const
 static int get_string(struct ctx *c, const json_t *v, const char *field, char *out, size_t size)
 {
 	if (!json_is_string(v))
-		return bad(c->err, c->path, c->file, field, "expected a string, got %s", aa_job_json_type(v));
+		return bad(c->err, c->path, c->file, field, "expected a string, got %s", aa_json_type_name(v));
 	const char *s = json_string_value(v);
 	size_t n = json_string_length(v);
 	if (n == 0 || n >= size)
@@ -143,7 +144,7 @@ static int get_number(struct ctx *c, const json_t *v, const char *field, bool in
 {
 	if (integer ? !json_is_integer(v) : !json_is_number(v))
 		return bad(c->err, c->path, c->file, field, "expected %s, got %s", integer ? "an integer" : "a number",
-			   aa_job_json_type(v));
+			   aa_json_type_name(v));
 	*out = json_number_value(v);
 	/* push constants carry 32-bit values */
 	if (integer && (*out < -2147483648.0 || *out > 2147483647.0))
@@ -161,7 +162,7 @@ static int parse_param(struct ctx *c, struct aa_user_method *um, int i, const js
 	snprintf(field, sizeof field, "params[%d]", i);
 	if (!json_is_object(p))
 		return bad(c->err, c->path, c->file, field, "expected an object {\"name\", \"type\", \"default\", ...}, "
-			   "got %s", aa_job_json_type(p));
+			   "got %s", aa_json_type_name(p));
 	if (check_keys(c, p, field, keys))
 		return -1;
 	struct aa_param_def *d = &um->params[i];
@@ -215,7 +216,7 @@ static int parse_param(struct ctx *c, struct aa_user_method *um, int i, const js
 	}
 	if (d->type == AA_PARAM_BOOL) {
 		if (!json_is_boolean(def))
-			return bad(c->err, c->path, c->file, f, "expected true or false, got %s", aa_job_json_type(def));
+			return bad(c->err, c->path, c->file, f, "expected true or false, got %s", aa_json_type_name(def));
 		d->def = json_is_true(def);
 	}
 	if (d->type == AA_PARAM_ENUM) {
@@ -328,7 +329,7 @@ static int parse_read(struct ctx *c, struct aa_user_method *um, int pi, int ri, 
 			return -1;
 	} else {
 		return bad(c->err, c->path, c->file, field, "expected an input name or {\"input\": ..., \"filter\": ...}, "
-			   "got %s", aa_job_json_type(v));
+			   "got %s", aa_json_type_name(v));
 	}
 	r->linear = !strcmp(filter, "linear");
 	pending[ri][0] = '\0';
@@ -382,7 +383,7 @@ static int parse_pass(struct ctx *c, struct aa_user_method *um, const struct aa_
 	snprintf(field, sizeof field, "passes[%d]", i);
 	if (!json_is_object(p))
 		return bad(c->err, c->path, c->file, field, "expected an object {\"name\", \"shader\", \"reads\", "
-			   "\"format\"}, got %s", aa_job_json_type(p));
+			   "\"format\"}, got %s", aa_json_type_name(p));
 	if (check_keys(c, p, field, keys))
 		return -1;
 	const json_t *v;
@@ -438,7 +439,7 @@ static int parse_pass(struct ctx *c, struct aa_user_method *um, const struct aa_
 	snprintf(f, sizeof f, "%s.reads", field);
 	const json_t *reads = json_object_get(p, "reads");
 	if (reads && !json_is_array(reads))
-		return bad(c->err, c->path, c->file, f, "expected an array of inputs, got %s", aa_job_json_type(reads));
+		return bad(c->err, c->path, c->file, f, "expected an array of inputs, got %s", aa_json_type_name(reads));
 	if (json_array_size(reads) > AA_USER_MAX_READS)
 		return bad(c->err, c->path, c->file, f, "%zu inputs; a pass reads at most %d", json_array_size(reads),
 			   AA_USER_MAX_READS);
@@ -534,7 +535,7 @@ static int parse_method(struct ctx *c, struct aa_user_method *um, const struct a
 				    jerr.text);
 	int rc = -1;
 	if (!json_is_object(root)) {
-		bad(c->err, c->path, c->file, "", "a method file holds a JSON object, not %s", aa_job_json_type(root));
+		bad(c->err, c->path, c->file, "", "a method file holds a JSON object, not %s", aa_json_type_name(root));
 		goto out;
 	}
 	if (check_keys(c, root, "", keys))

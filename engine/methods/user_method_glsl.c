@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../gpu/gpu.h"
-#include "glsl_compile.h"
-#include "user_method.h"
+#include "gpu/gpu.h"
+#include "methods/glsl_compile.h"
+#include "methods/user_method.h"
 
 uint32_t aa_user_push_size(const struct aa_user_method *um)
 {

@@ -9,8 +9,8 @@
 
 #include <jansson.h>
 
-#include "../error.h"
-#include "user_method.h"
+#include "util/error.h"
+#include "methods/user_method.h"
 
 static int disk_read(void *ctx, const char *name, char **text, size_t *size, struct aa_error *err)
 {

@@ -2,7 +2,7 @@
  * reference's (docs/hard-cases.md). */
 #include <stdlib.h>
 
-#include "metrics.h"
+#include "metrics/metrics.h"
 
 double aa_metrics_mean_change(const struct aa_image_rgba8 *a, const struct aa_image_rgba8 *b)
 {

@@ -2,7 +2,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "metrics.h"
+#include "metrics/metrics.h"
 
 double aa_metrics_flicker(const struct aa_image_rgba8 *m, const struct aa_image_rgba8 *m_prev,
 			  const struct aa_image_rgba8 *r, const struct aa_image_rgba8 *r_prev)

@@ -8,8 +8,8 @@
  * vertically in blocks of BLOCK pixels, which stay in L1, and computes the errors of the block. The SIMD
  * kernels (flip_simd.c) do per pixel what scalar code does, in the reference's order, so the map is the
  * same bit for bit with any number of threads and with or without AVX2. */
-#include "flip.h"
-#include "flip_internal.h"
+#include "metrics/flip.h"
+#include "metrics/flip_internal.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -9,8 +9,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "../error.h"
-#include "../image/image.h"
+#include "util/error.h"
+#include "image/image.h"
 
 /* Pixels per degree of the default viewing conditions: a 0.7 m wide 3840-pixel monitor seen from 0.7 m
  * (67.0206451 in float32, 3840 pi / 180 exactly). */

@@ -1,7 +1,7 @@
 /* FLIP's building blocks: colour spaces, the contrast-sensitivity and feature filters, tone mappers.
  * float32 throughout, in the reference implementation's order of operations (../shared/notes/flip.md). */
-#include "flip.h"
-#include "flip_internal.h"
+#include "metrics/flip.h"
+#include "metrics/flip_internal.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* FLIP's outputs: pooled statistics of an error map and the map as an image (magma colour map or grey). */
-#include "flip.h"
+#include "metrics/flip.h"
 
 #include <float.h>
 #include <pthread.h>

@@ -7,7 +7,7 @@
  * FMA, which would round differently. */
 #include <string.h>
 
-#include "flip_internal.h"
+#include "metrics/flip_internal.h"
 
 typedef float vfloat __attribute__((vector_size(32)));
 #define VLEN 8

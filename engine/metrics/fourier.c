@@ -7,7 +7,7 @@
  * the band energy of R plus that of G without separating the spectra. Rows are transformed in place, then
  * columns are gathered a few at a time and their power accumulated per band; both passes are split
  * between threads. */
-#include "fourier.h"
+#include "metrics/fourier.h"
 
 #include <math.h>
 #include <pthread.h>

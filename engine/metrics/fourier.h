@@ -14,8 +14,8 @@
 #ifndef AA_FOURIER_H
 #define AA_FOURIER_H
 
-#include "../error.h"
-#include "../image/image.h"
+#include "util/error.h"
+#include "image/image.h"
 
 enum { AA_FOURIER_LOW, AA_FOURIER_MID, AA_FOURIER_HIGH, AA_FOURIER_BANDS };
 /* Band edges in cycles per pixel. */

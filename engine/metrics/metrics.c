@@ -1,5 +1,5 @@
 /* Per-pixel error metrics (MSE, PSNR, SNR, max error, luminance-error curve) in one pass over the pixels. */
-#include "metrics.h"
+#include "metrics/metrics.h"
 
 #include <math.h>
 #include <stdlib.h>

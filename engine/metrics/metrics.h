@@ -4,9 +4,9 @@
 
 #include <stdbool.h>
 
-#include "../image/image.h"
-#include "flip.h"
-#include "fourier.h"
+#include "image/image.h"
+#include "metrics/flip.h"
+#include "metrics/fourier.h"
 
 /* The error-threshold curve (seed 002, Fig. 1): thresholds 0, 0.01, ..., 1.00 on luminance error. */
 #define AA_THRESHOLD_COUNT 101

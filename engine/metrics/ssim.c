@@ -10,7 +10,7 @@
  *
  * The filter is separable: a vertical pass over a ring of the 11 source rows, then a horizontal pass,
  * each in blocks that stay in L1 and vectorise. Bands of rows run on separate threads. */
-#include "metrics.h"
+#include "metrics/metrics.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -1,5 +1,5 @@
 /* Exact box-filtered coverage of convex polygons, by clipping each polygon to every pixel it touches. */
-#include "exact_coverage.h"
+#include "reference/exact_coverage.h"
 
 #include <math.h>
 #include <stdbool.h>

@@ -2,7 +2,7 @@
 #ifndef AA_EXACT_COVERAGE_H
 #define AA_EXACT_COVERAGE_H
 
-#include "../scene/scene.h"
+#include "scene/scene.h"
 
 /* Each pixel's covered area (0..1) by the union of polygons, computed by clipping each polygon to the
  * pixel square (Sutherland-Hodgman) and summing areas. Polygons must not overlap each other.

@@ -3,18 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "reference.h"
-
-double aa_halton(unsigned index, unsigned base)
-{
-	double f = 1.0, r = 0.0;
-	while (index > 0) {
-		f /= base;
-		r += f * (index % base);
-		index /= base;
-	}
-	return r;
-}
+#include "reference/reference.h"
+#include "util/halton.h"
 
 void aa_reference_offsets(int n, float (*out)[2])
 {

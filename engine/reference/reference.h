@@ -3,9 +3,9 @@
 #ifndef AA_REFERENCE_H
 #define AA_REFERENCE_H
 
-#include "../image/image.h"
-#include "../renderer.h"
-#include "sample_accumulator.h"
+#include "image/image.h"
+#include "render/renderer.h"
+#include "reference/sample_accumulator.h"
 
 struct aa_reference {
 	struct aa_renderer *r;
@@ -16,8 +16,6 @@ struct aa_reference {
 	uint64_t memory_bytes;
 };
 
-/* Radical inverse of index in base (Halton sequence; index 0 gives 0). */
-double aa_halton(unsigned index, unsigned base);
 /* The reference's jitter: Halton(2,3) points 1..n mapped to [-0.5, 0.5)^2. */
 void aa_reference_offsets(int n, float (*out)[2]);
 

@@ -3,8 +3,8 @@
  * image becomes the new N/2 one: reaching N costs N renders, as a fixed N does. */
 #include <string.h>
 
-#include "../metrics/metrics.h"
-#include "reference.h"
+#include "metrics/metrics.h"
+#include "reference/reference.h"
 
 static bool converged(const struct aa_metrics *m, double target_psnr)
 {

@@ -1,7 +1,7 @@
 /* Sums of jittered scene renders, a batch of renders per summing pass (sample_accumulator.h). */
 #include <string.h>
 
-#include "sample_accumulator.h"
+#include "reference/sample_accumulator.h"
 
 int aa_sample_accumulator_create(struct aa_renderer *r, const struct aa_scene_target_desc *desc, int batch,
 				 float weight, const char *name, struct aa_method_result *info,

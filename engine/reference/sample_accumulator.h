@@ -4,7 +4,7 @@
 #ifndef AA_SAMPLE_ACCUMULATOR_H
 #define AA_SAMPLE_ACCUMULATOR_H
 
-#include "../renderer.h"
+#include "render/renderer.h"
 
 #define AA_ACCUMULATE_BATCH 7 /* + the previous sum: the eight sources a full-screen pass reads */
 

@@ -4,12 +4,12 @@
 #include <stdio.h>
 
 #include "image/image.h"
-#include "results.h"
+#include "results/results.h"
 
 void aa_results_exr_relpath(const char *label, int ordinal, char *out, size_t size)
 {
 	char dirname[AA_LABEL_MAX * 2];
-	aa_results_method_dirname(label, dirname, sizeof dirname);
+	aa_label_dirname(label, dirname, sizeof dirname);
 	snprintf(out, size, "exr/%s/%04d.exr", dirname, ordinal);
 }
 

@@ -6,42 +6,19 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "results.h"
-
-void aa_results_method_dirname(const char *label, char *out, size_t size)
-{
-	if (size == 0)
-		return;
-	size_t n = 0;
-	for (; label[n] && n + 1 < size; n++) {
-		const char c = label[n];
-		if (c == ':' || c == ',')
-			out[n] = '_';
-		else if (c == '=')
-			out[n] = '-';
-		else if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-			 c == '_' || c == '-')
-			out[n] = c;
-		else
-			out[n] = '_'; /* anything else ('/', spaces, bytes of UTF-8) must not shape the path */
-	}
-	out[n] = '\0';
-	/* "", "." and ".." would name the parent or the directory itself. */
-	if (n == 0 || strspn(out, ".") == n)
-		snprintf(out, size, "_");
-}
+#include "results/results.h"
 
 void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size)
 {
 	char dirname[AA_LABEL_MAX * 2];
-	aa_results_method_dirname(label, dirname, sizeof dirname);
+	aa_label_dirname(label, dirname, sizeof dirname);
 	snprintf(out, size, "%s/%s/%04d.png", kind, dirname, ordinal);
 }
 
 void aa_results_linear_relpath(const char *label, int ordinal, char *out, size_t size)
 {
 	char dirname[AA_LABEL_MAX * 2];
-	aa_results_method_dirname(label, dirname, sizeof dirname);
+	aa_label_dirname(label, dirname, sizeof dirname);
 	snprintf(out, size, "linear/%s/%04d.rgba16f", dirname, ordinal);
 }
 

@@ -6,11 +6,10 @@
 
 #include <jansson.h>
 
-#include "../job.h"
+#include "run/farm.h"
+#include "types/job.h"
+#include "util/file_name.h"
 
-/* Directory name of a method's images: the label with ':' -> '_', '=' -> '-', ',' -> '_'
- * ("ssaa:samples=16" -> "ssaa_samples-16"). The reference uses "reference". */
-void aa_results_method_dirname(const char *label, char *out, size_t size);
 
 /* Image files of a job directory, relative to it:
  *   frames/<dirname>/<NNNN>.png   method output (and frames/reference/<NNNN>.png)
@@ -30,6 +29,12 @@ int aa_results_write_image(const char *dir, const char *relpath, const struct aa
 int aa_results_write_event_images(const char *dir, const struct aa_event *ev, struct aa_error *err);
 
 json_t *aa_results_to_json(const struct aa_job_result *r);
+/* A results.json document of a job that is not a suite (or one case of a suite's), read back into a
+ * result: what its writer (results_json.c) stores per frame and per timed render. results.json keeps the
+ * error-threshold curve as a mean only: each frame gets its curve from curves_per_method ([method][frame],
+ * a shard's), or the mean when it is NULL. The error names the key at fault. */
+int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, struct aa_job_result *out,
+			 struct aa_error *err);
 /* Writes dir/results.json atomically (temp file, fsync, rename). */
 int aa_results_write_json(const struct aa_job_result *r, const char *dir, struct aa_error *err);
 /* Writes a JSON document (results.json of a job or a suite) atomically into dir, as results.json is written. */
@@ -37,17 +42,6 @@ int aa_results_write_json_doc(const json_t *root, const char *dir, const char *n
 /* Writes dir/name atomically: a temp file in dir, fsync, rename over name, fsync dir. */
 int aa_results_write_file_atomic(const char *dir, const char *name, const char *data, size_t size,
 				 struct aa_error *err);
-/* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
-int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
-
-/* PSNR of the reference's N/2- against its N-sample image from the mean MSE over its frames; NAN when none
- * or identical (*identical says which). */
-double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical);
-
-/* The report's style sheet and HTML escaping, shared by the report of a suite (suite_results.c). */
-extern const char aa_report_style[];
-void aa_report_esc(FILE *o, const char *s);
-
 /* exr/<dirname>/<NNNN>.exr: the frame's linear colour as float EXR (aalab run --exr; exr_frames.c). */
 void aa_results_exr_relpath(const char *label, int ordinal, char *out, size_t size);
 /* mkdir -p of every directory of path up to its last '/' (path is restored); -1 with err naming it. */
@@ -55,23 +49,44 @@ int aa_results_make_parents(char *path, struct aa_error *err);
 /* Writes the EXR of a reference or method frame event (its linear image); other events write nothing. */
 int aa_results_write_event_exr(const char *dir, const struct aa_event *ev, struct aa_error *err);
 
-/* report.html's image viewer (report_viewer.c): its section of the page (data, viewer.css, viewer.js),
- * and viewer/NNNN.js beside the page, one per frame, carrying the frame's PNGs (read from dir). */
-int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, const char *dir, struct aa_error *err);
-/* The count square tiles (side tile) where the methods' FLIP maps in dir sum highest over every method and
- * frame, worst first: [{x, y, w, h, ordinal (the frame where the tile is worst), flip_mean}]; empty
- * without kept frames or when a map cannot be read (report_regions.c). */
-json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count);
-int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
-/* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
-void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
-/* A chart point's label: where it is drawn (x, baseline y; anchored at its right end when `end`) and the
- * span it takes, x0..x1. aa_report_spread_labels moves labels down until no two overlap (report_html.c). */
-struct aa_point_label {
-	double x, y, x0, x1;
-	bool end;
+/* ---- results of a suite (suite_results.c) ---- */
+
+/* results.json of the job: for a suite {"cases": [...]} around one results document per case, for a job
+ * that is not a suite the document of its one case; both with labels, suite and job_hash. */
+json_t *aa_suite_results_to_json(const struct aa_suite_result *r);
+/* Writes the images an event carries, into the directory of the event's case. */
+int aa_suite_write_event_images(const char *dir, const struct aa_job_spec *spec, const struct aa_event *ev,
+				struct aa_error *err);
+
+/* ---- summaries (summary.c) ---- */
+
+/* A distribution of times: median, 10th and 90th percentile, minimum, mean and the count of values. */
+struct aa_timing_stats {
+	double median, p10, p90, min, mean;
+	int n;
 };
-#define AA_LABEL_LINE 13.0 /* px between two labels' baselines */
-void aa_report_spread_labels(struct aa_point_label *labels, int n);
+/* Over n values (non-finite ones skipped); every field NAN and n 0 when there are none. */
+void aa_timing_stats_of(const double *values, int n, struct aa_timing_stats *out);
+/* The GPU time of the pass named `name` over every timed render of m that ran it. */
+void aa_pass_timing_stats(const struct aa_method_result *m, const char *name, struct aa_timing_stats *out);
+
+/* Per-method summary over frames (computed, never stored separately). Times are over every timed
+ * render (frames x timing.repeat); quality over the scored frames. */
+struct aa_method_summary {
+	double gpu_ms_median, gpu_ms_p90, gpu_ms_mean;
+	struct aa_timing_stats gpu_ms, cpu_ms; /* the full distributions (gpu_ms_median = gpu_ms.median) */
+	double cpu_ms_median;
+	double mse_mean;
+	double psnr_mean;          /* from mse_mean; NAN if every frame identical */
+	bool psnr_identical;
+	double ssim_mean;
+	double flicker_mean;       /* over frames 1.., NAN for one frame */
+	double over_threshold_mean; /* pixels over the job's over_threshold, mean over frames */
+	int best_frame, worst_frame; /* by PSNR (identical counts as best) */
+	double best_psnr, worst_psnr;
+};
+void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summary *out);
+/* Median and p-th percentile (0..100, linear interpolation) of n values (the array is not modified). */
+double aa_percentile(const double *values, int n, double p);
 
 #endif

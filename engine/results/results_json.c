@@ -10,8 +10,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "results.h"
+#include "results/results.h"
 #include "methods/user_method.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 #define RESULTS_VERSION 1
 

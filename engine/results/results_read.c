@@ -1,4 +1,4 @@
-/* results.json read back into a struct aa_job_result (aa_results_from_json, declared in shard_results.h):
+/* results.json read back into a struct aa_job_result (aa_results_from_json):
  * what results_json.c writes per frame and per timed render. The merge of shards reads each shard's
  * results with it. */
 #include <math.h>
@@ -6,9 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../job.h"
-#include "results.h"
-#include "shard_results.h"
+#include "types/job.h"
+#include "results/results.h"
+#include "run/engine.h"
+#include "run/job_spec.h"
 
 /* A number, or NAN for null and absent keys (the writer's num() wrote non-finite values as null). */
 static double jnum(const json_t *obj, const char *key)

@@ -7,9 +7,10 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "farm.h"
-#include "results.h"
-#include "verdicts.h"
+#include "run/farm.h"
+#include "results/results.h"
+#include "results/verdicts.h"
+#include "run/job_spec.h"
 
 static json_t *num(double v)
 {
@@ -99,158 +100,6 @@ json_t *aa_suite_results_to_json(const struct aa_suite_result *r)
 	if (r->spec.verdicts)
 		json_object_set_new(root, "verdicts", aa_verdicts_json(r, NULL));
 	return root;
-}
-
-int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, struct aa_error *err)
-{
-	if (!r->spec.is_suite) {
-		if (r->case_count < 1)
-			return aa_error_set(err, AA_ERR_INTERNAL, "", "no results to write");
-		json_t *root = aa_suite_results_to_json(r);
-		if (!root)
-			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
-		int rc = aa_results_write_json_doc(root, dir, "results.json", err);
-		json_decref(root);
-		return rc || aa_report_write_html(r->cases[0], dir, err) ? -1 : 0;
-	}
-	for (int i = 0; i < r->case_count; i++) {
-		char rel[600], path[4200];
-		aa_case_relpath(&r->spec, i, rel, sizeof rel);
-		snprintf(path, sizeof path, "%s/%s/", dir, rel);
-		/* the case's directory exists once it has images; without images it may not yet */
-		for (char *p = path + strlen(dir) + 1; *p; p++)
-			if (*p == '/') {
-				*p = '\0';
-				mkdir(path, 0755);
-				*p = '/';
-			}
-		path[strlen(path) - 1] = '\0';
-		if (aa_report_write_html(r->cases[i], path, err) < 0)
-			return -1;
-	}
-	json_t *root = aa_suite_results_to_json(r);
-	if (!root)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building results.json");
-	int rc = aa_results_write_json_doc(root, dir, "results.json", err);
-	json_decref(root);
-	if (rc == 0)
-		rc = aa_suite_report_write_html(r, dir, err);
-	return rc;
-}
-
-static void cell_num(FILE *o, double v, int decimals)
-{
-	if (isfinite(v))
-		fprintf(o, "<td class=\"n\">%.*f</td>", decimals, v);
-	else
-		fputs("<td class=\"n\">&mdash;</td>", o);
-}
-
-/* Mean FLIP over the frames that have one. */
-static double flip_mean(const struct aa_method_result *m)
-{
-	double sum = 0;
-	int n = 0;
-	for (int i = 0; m->frames && i < m->frame_count; i++)
-		if (isfinite(m->frames[i].metrics.flip_mean)) {
-			sum += m->frames[i].metrics.flip_mean;
-			n++;
-		}
-	return n ? sum / n : NAN;
-}
-
-int aa_suite_report_write_html(const struct aa_suite_result *r, const char *dir, struct aa_error *err)
-{
-	char *buf = NULL;
-	size_t size = 0;
-	FILE *o = open_memstream(&buf, &size);
-	if (!o)
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing report.html");
-	const char *title = r->spec.name[0] ? r->spec.name : r->spec.suite[0] ? r->spec.suite : "suite";
-	fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-	      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>aalab: ", o);
-	aa_report_esc(o, title);
-	fprintf(o, "</title>\n<style>%s</style>\n</head>\n<body><main>\n<h1>", aa_report_style);
-	aa_report_esc(o, title);
-	fprintf(o, "</h1>\n<p class=\"sub\">aalab suite report \xc2\xb7 %d case%s \xc2\xb7 ", r->case_count,
-		r->case_count == 1 ? "" : "s");
-	aa_report_esc(o, r->started_at);
-	fprintf(o, " \xc2\xb7 %.1f s</p>\n<div class=\"cards\">\n", r->wall_seconds);
-	fputs("<div class=\"card\"><div class=\"k\">Suite</div><div class=\"v\">", o);
-	aa_report_esc(o, r->spec.suite[0] ? r->spec.suite : "(none)");
-	fputs("</div><div class=\"d\">", o);
-	char hash[80];
-	aa_job_hash(&r->spec, hash, sizeof hash);
-	aa_report_esc(o, hash);
-	fputs("</div></div>\n<div class=\"card\"><div class=\"k\">Labels</div><div class=\"d\">", o);
-	for (int i = 0; i < r->spec.label_count; i++) {
-		fputs(i ? "<br>" : "", o);
-		aa_report_esc(o, r->spec.labels[i].key);
-		fputs("=", o);
-		aa_report_esc(o, r->spec.labels[i].value);
-	}
-	if (r->spec.label_count == 0)
-		fputs("none", o);
-	fputs("</div></div>\n", o);
-	if (r->case_count > 0) {
-		fputs("<div class=\"card\"><div class=\"k\">Device</div><div class=\"v\">", o);
-		aa_report_esc(o, r->cases[0]->device_name);
-		fputs("</div><div class=\"d\">", o);
-		aa_report_esc(o, r->cases[0]->driver_info);
-		fputs("</div></div>\n", o);
-	}
-	fprintf(o, "<div class=\"card\"><div class=\"k\">Reference</div><div class=\"v\">%d samples</div>"
-		"<div class=\"d\">timing.repeat %d</div></div>\n</div>\n", r->spec.reference_samples,
-		r->spec.timing_repeat);
-	fputs("<h2 id=\"summary\">Summary across cases</h2>\n<p class=\"note\">GPU ms: the median over every timed "
-	      "render of the case (frames \xc3\x97 timing.repeat), with the 10th to 90th percentile. PSNR from the mean "
-	      "MSE over frames. Each case links its own report.</p>\n<table>\n<tr><th>case</th><th>method</th>"
-	      "<th class=\"n\">GPU ms</th><th class=\"n\">p10&ndash;p90</th><th class=\"n\">MB</th>"
-	      "<th class=\"n\">PSNR dB</th><th class=\"n\">SSIM</th><th class=\"n\">FLIP</th>"
-	      "<th class=\"n\">flicker</th></tr>\n", o);
-	for (int c = 0; c < r->case_count; c++) {
-		const struct aa_job_result *cr = r->cases[c];
-		char id[512], rel[600];
-		aa_case_id(&r->spec, c, id, sizeof id);
-		aa_case_relpath(&r->spec, c, rel, sizeof rel);
-		for (int i = 0; i < cr->method_count && i < AA_MAX_METHODS; i++) {
-			const struct aa_method_result *m = &cr->methods[i];
-			struct aa_method_summary s;
-			aa_method_summarize(m, &s);
-			fputs("<tr>", o);
-			if (i == 0) {
-				fprintf(o, "<td rowspan=\"%d\"><a href=\"", cr->method_count);
-				aa_report_esc(o, rel);
-				fputs("/report.html\">", o);
-				aa_report_esc(o, id);
-				fprintf(o, "</a><div class=\"note\">%d frame%s</div></td>", cr->spec.frames,
-					cr->spec.frames == 1 ? "" : "s");
-			}
-			fputs("<td>", o);
-			aa_report_esc(o, m->label);
-			fputs("</td>", o);
-			cell_num(o, s.gpu_ms.median, 2);
-			fprintf(o, "<td class=\"n\">%.2f&ndash;%.2f</td>", s.gpu_ms.p10, s.gpu_ms.p90);
-			cell_num(o, (double)m->memory_bytes / 1048576.0, 2);
-			if (s.psnr_identical)
-				fputs("<td class=\"n\"><span class=\"ident\">identical</span></td>", o);
-			else
-				cell_num(o, s.psnr_mean, 2);
-			cell_num(o, s.ssim_mean, 4);
-			cell_num(o, flip_mean(m), 4);
-			cell_num(o, s.flicker_mean, 3);
-			fputs("</tr>\n", o);
-		}
-	}
-	fputs("</table>\n<footer>Every number on this page comes from results.json in the same directory.</footer>\n"
-	      "</main></body>\n</html>\n", o);
-	if (fclose(o) != 0 || !buf) {
-		free(buf);
-		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory writing report.html");
-	}
-	int rc = aa_results_write_file_atomic(dir, "report.html", buf, size, err);
-	free(buf);
-	return rc;
 }
 
 int aa_suite_write_event_images(const char *dir, const struct aa_job_spec *spec, const struct aa_event *ev,

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results.h"
+#include "results/results.h"
 
 static int compare_doubles(const void *a, const void *b)
 {
@@ -173,21 +173,4 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	}
 	out->best_psnr = isfinite(best) ? best : NAN;
 	out->worst_psnr = isfinite(worst) ? worst : NAN;
-}
-
-void aa_job_result_free(struct aa_job_result *r)
-{
-	if (!r)
-		return;
-	for (int i = 0; i < r->method_count && i < AA_MAX_METHODS; i++) {
-		free(r->methods[i].frames);
-		r->methods[i].frames = NULL;
-		r->methods[i].frame_count = 0;
-		free(r->methods[i].timed);
-		r->methods[i].timed = NULL;
-		r->methods[i].timed_count = 0;
-	}
-	free(r->reference.frames);
-	r->reference.frames = NULL;
-	r->reference.frame_count = 0;
 }

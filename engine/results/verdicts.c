@@ -4,7 +4,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "verdicts.h"
+#include "results/verdicts.h"
+#include "run/job_spec.h"
 
 static const char *const names[AA_VERDICT_COUNT] = {"finite", "range", "stuck", "drift", "vs_none"};
 
@@ -19,7 +20,7 @@ static const struct {
 	enum aa_verdict_kind kind;
 	const char *reason;
 } expected_failures[] = {
-#include "verdicts_expected.h"
+#include "results/verdicts_expected.h"
 };
 
 const char *aa_verdict_expected(const char *scene, const char *method, enum aa_verdict_kind k)

@@ -5,7 +5,7 @@
 
 #include <jansson.h>
 
-#include "../farm.h"
+#include "run/farm.h"
 
 enum aa_verdict_kind {
 	AA_VERDICT_FINITE,  /* no NaN/Inf in any frame's float output (debug_targets: nor in an intermediate) */

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene_json.h"
+#include "scene/scene_json.h"
 
 #define DEG2RAD 0.017453292519943295
 

@@ -1,6 +1,6 @@
 /* A hand-drawn 5x7 bitmap font for "text" textures: A-Z, 0-9, space and some punctuation.
  * Each glyph is 7 rows of 5 columns, '#' = ink, drawn to read clearly at one texel per dot. */
-#include "texture.h"
+#include "scene/texture.h"
 
 #include <ctype.h>
 #include <string.h>

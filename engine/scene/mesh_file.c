@@ -4,7 +4,7 @@
  * node transforms baked in, except where a skin or an animation moves the vertices: those keep their
  * bind-space positions and a rig (scene_rig.c) poses them per frame. Materials and their textures come
  * from the file unless the object overrides them (mesh_file_materials.c). */
-#include "mesh_file_loader.h"
+#include "scene/mesh_file_loader.h"
 
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
@@ -15,9 +15,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "mesh_procedural.h"
-#include "mesh_text_check.h"
-#include "texture.h"
+#include "scene/mesh_procedural.h"
+#include "scene/mesh_text_check.h"
+#include "scene/texture.h"
 
 #define POSITION_MAX 1e7 /* as every number in a scene file (SJ_MAX_ABS) */
 

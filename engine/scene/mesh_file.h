@@ -3,7 +3,7 @@
 #ifndef AA_MESH_FILE_H
 #define AA_MESH_FILE_H
 
-#include "scene_json.h"
+#include "scene/scene_json.h"
 
 /* What an object asks of a file mesh when it is loaded. */
 struct aa_mesh_file_options {

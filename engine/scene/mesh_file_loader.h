@@ -5,7 +5,7 @@
 
 #include <assimp/scene.h>
 
-#include "mesh_file.h"
+#include "scene/mesh_file.h"
 
 struct node_info {
 	const struct aiNode *node;

@@ -10,9 +10,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "../image/image.h"
-#include "mesh_file_loader.h"
-#include "texture.h"
+#include "image/image.h"
+#include "scene/mesh_file_loader.h"
+#include "scene/texture.h"
 
 static int add_texture_slot(struct loader *L)
 {

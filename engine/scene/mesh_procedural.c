@@ -1,6 +1,6 @@
 /* Procedural meshes: shapes that stress anti-aliasing (thin wires, slats, near-horizontal edges, spokes)
  * built from a few primitives (grids, disks, boxes, tubes) with parameters read from the scene file. */
-#include "mesh_procedural.h"
+#include "scene/mesh_procedural.h"
 
 #include <math.h>
 #include <stdio.h>

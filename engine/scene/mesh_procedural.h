@@ -4,7 +4,7 @@
 #ifndef AA_MESH_PROCEDURAL_H
 #define AA_MESH_PROCEDURAL_H
 
-#include "scene_json.h"
+#include "scene/scene_json.h"
 
 /* Mesh types for {"type": ...}, NULL-terminated ("file" included). */
 extern const char *const aa_mesh_type_names[];

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "mesh_text_check.h"
+#include "scene/mesh_text_check.h"
 
 #define POSITION_MAX 1e7 /* as every number in a scene file */
 #define MAX_TOKENS 1024  /* values on one line */

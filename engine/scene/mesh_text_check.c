@@ -8,7 +8,7 @@
  * that make sense, text that is text, binary lengths that add up. Anything else is refused, naming the
  * line (or element and byte offset) and what is wrong. Nothing is allocated from a count in the file.
  * This file: lines, tokens and numbers, and the entry points; one file per format (mesh_text_*.c). */
-#include "mesh_text_check.h"
+#include "scene/mesh_text_check.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -22,9 +22,9 @@
 #include <strings.h>
 #include <sys/stat.h>
 
-#include "mesh_file.h"
-#include "mesh_text.h"
-#include "scene.h"
+#include "scene/mesh_file.h"
+#include "scene/mesh_text.h"
+#include "scene/scene.h"
 
 #define TEXT_MAX_LINE 65536
 

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh_text.h"
+#include "scene/mesh_text.h"
 
 struct obj_refs {
 	uint64_t max[3];  /* the largest 1-based index named of v, vt, vn */

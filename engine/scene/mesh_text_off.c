@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh_text.h"
+#include "scene/mesh_text.h"
 
 #define OFF_MAX_LINE 4000 /* assimp's OFF reader copies lines into 4096 bytes and writes one past a longer one */
 #define OFF_MAX_FACE 9    /* assimp's OFF reader drops larger faces and leaves faces without indices behind */

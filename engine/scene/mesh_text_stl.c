@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh_text.h"
+#include "scene/mesh_text.h"
 
 static float stl_float(const unsigned char *p)
 {

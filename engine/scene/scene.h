@@ -9,8 +9,8 @@
 #include <stdint.h>
 #include <time.h>
 
-#include "../error.h"
-#include "../mat4.h"
+#include "util/error.h"
+#include "util/mat4.h"
 
 #define AA_NAME_MAX 64
 

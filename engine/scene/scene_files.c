@@ -9,7 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene_json.h"
+#include "scene/scene_json.h"
 
 static int scene_dirs(const char *dirs[3])
 {

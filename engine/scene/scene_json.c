@@ -1,5 +1,5 @@
 /* Scene-file validation helpers: typed readers with ranges and defaults that report the JSON path. */
-#include "scene_json.h"
+#include "scene/scene_json.h"
 
 #include <limits.h>
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../image/image.h"
+#include "image/image.h"
 
 void sj_init(struct sj *s, const char *file, struct aa_error *err)
 {

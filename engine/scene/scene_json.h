@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 /* Validation context: the file name for messages and the JSON path of the value being read. */
 struct sj {

@@ -12,10 +12,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "mesh_file.h"
-#include "mesh_procedural.h"
-#include "scene_json.h"
-#include "texture.h"
+#include "scene/mesh_file.h"
+#include "scene/mesh_procedural.h"
+#include "scene/scene_json.h"
+#include "scene/texture.h"
 
 /* ---------------------------------------------------------------- freeing */
 

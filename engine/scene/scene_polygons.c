@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh_procedural.h"
-#include "scene.h"
+#include "scene/mesh_procedural.h"
+#include "scene/scene.h"
 
 /* Pixel (x, y), y down, sits at world (x, -y, 0); the camera looks down -z from z = 1 at the image
  * centre with y up, so world -y (pixel y) runs down the image. */

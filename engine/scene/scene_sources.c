@@ -7,7 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "scene.h"
+#include "scene/scene.h"
 
 static _Thread_local struct aa_scene *collecting;
 

@@ -1,6 +1,6 @@
 /* Scene textures: image files (through engine/image) and 5x7-font text, with mips filtered in linear
  * light because the stored bytes are sRGB and averaging sRGB values darkens edges. */
-#include "texture.h"
+#include "scene/texture.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -8,8 +8,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "../image/image.h"
-#include "scene_json.h"
+#include "image/image.h"
+#include "scene/scene_json.h"
 
 #define TEXTURE_FILE_MAX_BYTES (64u << 20)
 #define TEXT_MAX_CHARS 256

@@ -2,7 +2,7 @@
 #ifndef AA_TEXTURE_H
 #define AA_TEXTURE_H
 
-#include "scene.h"
+#include "scene/scene.h"
 
 void aa_texture_free(struct aa_texture *tex);
 /* 1 + floor(log2(max(w, h))). */

@@ -1,8 +1,9 @@
-/* libFuzzer target: the job validator (engine/job_spec.c) on any JSON text, as submit and aalab run
+/* libFuzzer target: the job validator (engine/run/job_spec.c) on any JSON text, as submit and aalab run
  * hand it a job object; a valid job must survive a round trip through aa_job_spec_to_json. */
 #include <stdint.h>
 
-#include "job.h"
+#include "types/job.h"
+#include "run/job_spec.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -7,6 +7,8 @@
 #include <cmocka.h>
 
 #include "fixture.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 struct aa_engine *fixture_engine;
 static int validation_failures; /* set by fixture_teardown, read by fixture_status */

@@ -4,7 +4,7 @@
 #ifndef AA_TEST_FIXTURE_H
 #define AA_TEST_FIXTURE_H
 
-#include "aa.h"
+#include "run/engine.h"
 
 extern struct aa_engine *fixture_engine;
 

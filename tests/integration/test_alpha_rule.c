@@ -14,9 +14,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "scene/texture.h"
+#include "methods/methods.h"
 
 #define SIZE 128
 #define TEXELS 32 /* magnified 4x: every fetch reads mip level 0, so no method differs by its LOD */

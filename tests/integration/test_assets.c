@@ -14,11 +14,12 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
-#include "engine_internal.h"
+#include "run/engine.h"
+#include "run/engine_internal.h"
 #include "fixture.h"
-#include "frame_plan.h"
-#include "renderer.h"
+#include "render/frame_plan.h"
+#include "render/renderer.h"
+#include "methods/methods.h"
 
 #define W 160
 #define H 90

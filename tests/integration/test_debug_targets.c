@@ -9,7 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "results/results.h"
 #include "results/verdicts.h"

@@ -10,9 +10,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "reference/exact_coverage.h"
+#include "methods/methods.h"
 
 
 

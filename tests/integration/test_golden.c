@@ -14,10 +14,12 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "golden.h"
 #include "reference/exact_coverage.h"
+#include "methods/methods.h"
+#include "results/results.h"
 
 #define WIDTH 96
 #define HEIGHT 54

@@ -15,7 +15,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "reference/exact_coverage.h"
 

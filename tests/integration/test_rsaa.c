@@ -11,9 +11,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
 #include "reference/exact_coverage.h"
+#include "methods/methods.h"
 
 #define SIZE 64
 #define ANGLES 19

@@ -12,8 +12,9 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
+#include "methods/methods.h"
 
 static const char *const temporal[] = {"taa", "taa-sobel"};
 

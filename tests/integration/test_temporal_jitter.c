@@ -12,12 +12,12 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
-#include "engine_internal.h"
+#include "run/engine.h"
+#include "run/engine_internal.h"
 #include "fixture.h"
-#include "frame_plan.h"
-#include "renderer.h"
-#include "temporal/jitter.h"
+#include "render/frame_plan.h"
+#include "render/renderer.h"
+#include "methods/jitter.h"
 
 enum { WIDTH = 320, HEIGHT = 180 };
 

@@ -17,8 +17,10 @@
 
 #include <jansson.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 static const char *const methods[] = {"asaa", "t2msaa"};
 #define METHODS 2

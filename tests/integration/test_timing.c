@@ -12,8 +12,9 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "fixture.h"
+#include "results/results.h"
 
 /* No method keeps one place in the order: over as many frames as methods, each takes every place. */
 static void test_order_rotates(void **state)

@@ -16,7 +16,8 @@
 #include "fixture.h"
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
-#include "temporal/jitter.h"
+#include "methods/jitter.h"
+#include "run/job_spec.h"
 
 static json_t *files;
 

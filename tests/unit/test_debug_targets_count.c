@@ -1,4 +1,4 @@
-/* The count behind job option debug_targets (engine/debug_targets.c) on hand-made texels: every NaN and
+/* The count behind job option debug_targets (engine/render/debug_targets.c) on hand-made texels: every NaN and
  * Inf of half and float formats is found, the largest finite values and subnormals are not, a texel counts
  * once however many of its channels are bad, depth outside [0, 1] counts, and unchecked formats give 0. */
 #include <float.h>
@@ -9,7 +9,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "debug_targets.h"
+#include "render/debug_targets.h"
 
 static void test_half_formats(void **state)
 {

@@ -1,4 +1,4 @@
-/* The opaque draw order (aa_draw_order_front_to_back in engine/renderer_frame.c), without a GPU: the object
+/* The opaque draw order (aa_draw_order_front_to_back in engine/render/renderer_frame.c), without a GPU: the object
  * whose box ends nearest to the eye is drawn first, so a floor or a wall that everything else stands on or
  * hangs in front of comes last, whatever its place in the scene file; equal keys keep the scene's order. */
 #include <setjmp.h>
@@ -7,7 +7,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "renderer.h"
+#include "render/renderer.h"
 
 static void sort(const struct aa_box *boxes, int n, vec3 eye, int *order)
 {

@@ -12,9 +12,10 @@
 
 #include <cmocka.h>
 
-#include "farm.h"
-#include "results/compare.h"
-#include "sha256.h"
+#include "run/farm.h"
+#include "compare/compare.h"
+#include "util/sha256.h"
+#include "run/job_spec.h"
 
 static json_t *load(const char *text)
 {

@@ -8,8 +8,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
-#include "frame_plan.h"
+#include "run/engine.h"
+#include "render/frame_plan.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 static const char *const order[] = {"shadow-map", "scene-forward", "alpha-test", "alpha-blend", "velocity",
 				    "model-ids", "history", "supersample-resolve", "reference-accumulate", "readback"};

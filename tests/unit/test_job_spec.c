@@ -8,7 +8,9 @@
 
 #include <cmocka.h>
 
-#include "job.h"
+#include "types/job.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 /* A method table with every parameter type, standing in for fxaa/smaa/rsaa, which the registry may not
  * list yet. Tests reach it through aa_method_parse_params and aa_method_set_param. */

@@ -9,13 +9,15 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 #include "gpu/sample_positions.h"
 #include "methods/fxaa.h"
-#include "methods/method.h"
+#include "types/method.h"
 #include "methods/smaa.h"
 #include "reference/reference.h"
-#include "temporal/jitter.h"
+#include "methods/jitter.h"
+#include "methods/methods.h"
+#include "util/halton.h"
 
 /* Radical inverses written out by hand: index in base b, digits mirrored about the point. */
 static void test_halton_points(void **state)

@@ -5,8 +5,9 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "mat4.h"
+#include "util/mat4.h"
 #include "reference/reference.h"
+#include "util/halton.h"
 
 static void test_reversed_z_perspective(void **state)
 {

@@ -13,7 +13,9 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 static int checked_accepts, checked_refusals;
 

@@ -16,6 +16,8 @@
 #include "image/image.h"
 #include "metrics/flip.h"
 #include "results/results.h"
+#include "report/report.h"
+#include "run/job_spec.h"
 
 static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
 {

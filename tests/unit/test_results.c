@@ -14,6 +14,9 @@
 #include <cmocka.h>
 
 #include "results/results.h"
+#include "methods/methods.h"
+#include "report/report.h"
+#include "run/job_spec.h"
 
 /* Methods local to the test, so the tables do not depend on which methods the registry lists. */
 static const int preset_allowed[] = { 10, 12, 15, 20, 23, 25, 26, 29, 39, 0 };
@@ -463,15 +466,15 @@ static void test_output_dir(void **state)
 {
 	(void)state;
 	char out[256];
-	aa_results_method_dirname("ssaa:samples=16", out, sizeof out);
+	aa_label_dirname("ssaa:samples=16", out, sizeof out);
 	assert_string_equal(out, "ssaa_samples-16");
-	aa_results_method_dirname("fxaa:preset=12,subpix=0.5", out, sizeof out);
+	aa_label_dirname("fxaa:preset=12,subpix=0.5", out, sizeof out);
 	assert_string_equal(out, "fxaa_preset-12_subpix-0.5");
-	aa_results_method_dirname("a/../b c", out, sizeof out);
+	aa_label_dirname("a/../b c", out, sizeof out);
 	assert_string_equal(out, "a_.._b_c");
-	aa_results_method_dirname("..", out, sizeof out);
+	aa_label_dirname("..", out, sizeof out);
 	assert_string_equal(out, "_");
-	aa_results_method_dirname("", out, sizeof out);
+	aa_label_dirname("", out, sizeof out);
 	assert_string_equal(out, "_");
 	aa_results_frame_relpath("frames", "reference", 3, out, sizeof out);
 	assert_string_equal(out, "frames/reference/0003.png");

@@ -12,7 +12,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 
-#include "aa.h"
+#include "run/engine.h"
 
 /* One triangle, positions (0,0,0) (1,0,0) (0,1,0) and uvs (0,0) (1,0) (0,1), as 60 bytes of little-endian
  * floats in a data URI; node 0 moves it by (10, 20, 30) and scales it by 2. */

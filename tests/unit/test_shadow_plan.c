@@ -1,4 +1,4 @@
-/* The shadow map's fit to the view (engine/shadow_fit.c) and the frame plan's reasons, without a GPU:
+/* The shadow map's fit to the view (engine/render/shadow_fit.c) and the frame plan's reasons, without a GPU:
  * cascades cover their slice of the view, keep their size and texel grid when the camera moves by less than
  * a texel, hold the casters' depths and nothing beyond; the plan says what decided each pass. */
 #include <math.h>
@@ -10,10 +10,11 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "frame_plan.h"
-#include "job.h"
-#include "renderer.h"
-#include "shadow_fit.h"
+#include "render/frame_plan.h"
+#include "types/job.h"
+#include "render/renderer.h"
+#include "render/shadow_fit.h"
+#include "run/job_spec.h"
 
 static struct aa_camera camera_at(vec3 position, vec3 target)
 {

@@ -14,8 +14,9 @@
 #include <cmocka.h>
 
 #include "results/results.h"
-#include "results/shard_results.h"
-#include "shard.h"
+#include "compare/shard_merge.h"
+#include "run/shard.h"
+#include "run/job_spec.h"
 
 static int parse(const char *text, struct aa_job_spec *spec, struct aa_error *err)
 {

@@ -11,10 +11,12 @@
 
 #include <cmocka.h>
 
-#include "job.h"
+#include "types/job.h"
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
-#include "sha256.h"
+#include "util/sha256.h"
+#include "methods/methods.h"
+#include "run/job_spec.h"
 
 static void test_sha256(void **state)
 {

@@ -1,0 +1,45 @@
+/* report.html of a job and of a suite: one self-contained page (tables, charts, warnings, the image
+ * viewer) beside the job's images; and writing a run's results.json with its reports. */
+#ifndef AA_REPORT_H
+#define AA_REPORT_H
+
+#include <stdio.h>
+
+#include "results/results.h"
+
+/* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
+int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+
+/* PSNR of the reference's N/2- against its N-sample image from the mean MSE over its frames; NAN when none
+ * or identical (*identical says which). */
+double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical);
+
+/* The report's style sheet and HTML escaping, shared by the report of a suite (suite_results.c). */
+extern const char aa_report_style[];
+void aa_report_esc(FILE *o, const char *s);
+
+/* report.html's image viewer (report_viewer.c): its section of the page (data, viewer.css, viewer.js),
+ * and viewer/NNNN.js beside the page, one per frame, carrying the frame's PNGs (read from dir). */
+int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* The count square tiles (side tile) where the methods' FLIP maps in dir sum highest over every method and
+ * frame, worst first: [{x, y, w, h, ordinal (the frame where the tile is worst), flip_mean}]; empty
+ * without kept frames or when a map cannot be read (report_regions.c). */
+json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count);
+int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
+/* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
+void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
+/* A chart point's label: where it is drawn (x, baseline y; anchored at its right end when `end`) and the
+ * span it takes, x0..x1. aa_report_spread_labels moves labels down until no two overlap (report_html.c). */
+struct aa_point_label {
+	double x, y, x0, x1;
+	bool end;
+};
+#define AA_LABEL_LINE 13.0 /* px between two labels' baselines */
+void aa_report_spread_labels(struct aa_point_label *labels, int n);
+
+/* Writes results.json and report.html into dir (and each case's report.html into its directory). */
+int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, struct aa_error *err);
+/* The report of a suite: the summary table across cases, linking each case's own report. */
+int aa_suite_report_write_html(const struct aa_suite_result *r, const char *dir, struct aa_error *err);
+
+#endif

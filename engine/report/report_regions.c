@@ -1,0 +1,114 @@
+/* The worst regions of a job for report.html: the square tiles where the methods differ most from the
+ * reference by FLIP, summed over every method and every frame, each with the frame where it is worst.
+ * Read back from the FLIP maps beside the report (flip/<method>/NNNN.png store the magma index
+ * int(255 v + 0.5) of each pixel's value v, so the value comes back to within 1/510). */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image/png_io.h"
+#include "metrics/flip.h"
+#include "results/results.h"
+
+struct magma_entry {
+	uint32_t rgb;
+	int index;
+};
+
+static int by_rgb(const void *a, const void *b)
+{
+	const uint32_t x = ((const struct magma_entry *)a)->rgb, y = ((const struct magma_entry *)b)->rgb;
+	return (x > y) - (x < y);
+}
+
+/* The magma colours sorted for bsearch; entries colliding on one colour keep the first index. */
+static void magma_table(struct magma_entry table[256])
+{
+	float ramp[256];
+	uint8_t px[256 * 4];
+	struct aa_image_rgba8 img = { .width = 256, .height = 1, .pixels = px };
+	for (int i = 0; i < 256; i++)
+		ramp[i] = (float)i / 255.0f;
+	aa_flip_colorize(ramp, true, &img);
+	for (int i = 0; i < 256; i++)
+		table[i] = (struct magma_entry){ (uint32_t)px[4 * i] << 16 | (uint32_t)px[4 * i + 1] << 8 | px[4 * i + 2], i };
+	qsort(table, 256, sizeof table[0], by_rgb);
+}
+
+/* Adds each tile's summed FLIP value of one map to sums; -1 when the map cannot be read or is not WxH. */
+static int add_map(const char *path, int width, int height, int tile, int tiles_x, const struct magma_entry *table,
+		   double *sums)
+{
+	struct aa_file_pixels px = { 0 };
+	struct aa_error err = { 0 };
+	if (aa_png_read(path, false, &px, &err) || px.width != width || px.height != height || px.channels < 3) {
+		free(px.data);
+		return -1;
+	}
+	const uint8_t *p = px.data;
+	for (int y = 0; y < height; y++)
+		for (int x = 0; x < width; x++, p += px.channels) {
+			const struct magma_entry key = { (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2], 0 };
+			const struct magma_entry *hit = bsearch(&key, table, 256, sizeof table[0], by_rgb);
+			if (hit)
+				sums[(y / tile) * tiles_x + x / tile] += hit->index / 255.0;
+		}
+	free(px.data);
+	return 0;
+}
+
+json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count)
+{
+	json_t *out = json_array();
+	const int frames = r->method_count > 0 ? r->methods[0].frame_count : 0;
+	const int width = r->spec.width, height = r->spec.height;
+	if (!r->spec.keep_frames || frames == 0 || width <= 0 || height <= 0 || tile <= 0)
+		return out;
+	const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile, tiles = tiles_x * tiles_y;
+	double *total = calloc((size_t)tiles, sizeof *total), *in_frame = calloc((size_t)tiles, sizeof *in_frame),
+	       *worst = calloc((size_t)tiles, sizeof *worst);
+	int *worst_frame = calloc((size_t)tiles, sizeof *worst_frame);
+	struct magma_entry table[256];
+	magma_table(table);
+	bool ok = total && in_frame && worst && worst_frame;
+	for (int f = 0; ok && f < frames; f++) {
+		memset(in_frame, 0, (size_t)tiles * sizeof *in_frame);
+		for (int m = 0; ok && m < r->method_count; m++) {
+			char rel[600], path[4096];
+			aa_results_frame_relpath("flip", r->methods[m].label, f, rel, sizeof rel);
+			snprintf(path, sizeof path, "%s/%s", dir, rel);
+			ok = add_map(path, width, height, tile, tiles_x, table, in_frame) == 0;
+		}
+		for (int t = 0; ok && t < tiles; t++) {
+			total[t] += in_frame[t];
+			if (in_frame[t] > worst[t]) {
+				worst[t] = in_frame[t];
+				worst_frame[t] = f;
+			}
+		}
+	}
+	/* The count tiles with the largest totals, worst first (tiles are disjoint: no overlap to resolve). */
+	for (int k = 0; ok && k < count; k++) {
+		int best = -1;
+		for (int t = 0; t < tiles; t++)
+			if (total[t] > 0 && (best < 0 || total[t] > total[best]))
+				best = t;
+		if (best < 0)
+			break;
+		const int x = (best % tiles_x) * tile, y = (best / tiles_x) * tile;
+		const int w = x + tile > width ? width - x : tile, h = y + tile > height ? height - y : tile;
+		/* mean FLIP per pixel of the tile over methods and frames */
+		const double mean = total[best] / ((double)w * h * r->method_count * frames);
+		json_array_append_new(out, json_pack("{si si si si si sf}", "x", x, "y", y, "w", w, "h", h, "ordinal",
+						     worst_frame[best], "flip_mean", mean));
+		total[best] = 0;
+	}
+	if (!ok)
+		json_array_clear(out);
+	free(total);
+	free(in_frame);
+	free(worst);
+	free(worst_frame);
+	return out;
+}

@@ -1,0 +1,14 @@
+/* What messages about JSON input say of it: the type of a value, user text made safe to print. */
+#ifndef AA_JSON_TEXT_H
+#define AA_JSON_TEXT_H
+
+#include <stddef.h>
+
+#include <jansson.h>
+
+/* "an object", "a string", "an integer", ...: for "expected X, got <this>". */
+const char *aa_json_type_name(const json_t *v);
+/* User text for a path or message: at most 48 bytes, control characters as '?'. */
+const char *aa_shown_text(const char *text, char *buf, size_t size);
+
+#endif
