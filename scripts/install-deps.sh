@@ -1,5 +1,5 @@
 #!/bin/sh
-# Installs the Debian 12 packages aalab needs to build, test and run (DESIGN.md, "Dependencies"); clang
+# Installs the Debian 12 packages aalab needs to build, test and run (docs/architecture.md, "Build and tests"); clang
 # and its runtime (libFuzzer, the sanitizers) build the fuzz targets of tests/fuzz; slurm-wlm and munge run
 # the throwaway cluster of tests/integration/slurm_farm.py (docs/farm.md).
 set -e

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates the assets of the hard-case scenes (issue 17, docs/hard-cases.md) into scenes/assets/
+"""Generates the assets of the hard-case scenes (docs/hard-cases.md) into scenes/assets/
 (standard library only, with the helpers of make_scene_assets.py):
 bumps.gltf: a unit quad (xy plane, facing +z) with a shiny metal material and a tangent-space normal map
 of fine egg-crate bumps (slopes up to ~32 degrees), its texture repeated 12 times across: the normals vary

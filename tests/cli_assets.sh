@@ -1,5 +1,5 @@
 #!/bin/sh
-# Mesh files from the command line (issue 12): every refusal rule exits 2 naming the file and the field or
+# Mesh files from the command line: every refusal rule exits 2 naming the file and the field or
 # extension, once; warnings reach the table and results.json; a job file's scene path is relative to the
 # job file; `aalab scenes` lists scenes without loading their meshes.
 . "$(dirname "$0")/lib.sh"

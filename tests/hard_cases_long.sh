@@ -1,5 +1,5 @@
 #!/bin/sh
-# 1,000 still frames of taa, asaa and t2msaa at 32x18 (issue 17; bench/hard-cases-long runs 10,000 of every
+# 1,000 still frames of taa, asaa and t2msaa at 32x18 (bench/hard-cases-long runs 10,000 of every
 # temporal method; taa-sobel, whose history is taa's, is left out here to keep this fast under sanitizers):
 # no drift and no stall (tests/hardcases/long_run_check.py says what each means).
 . "$(dirname "$0")/lib.sh"

@@ -15,6 +15,8 @@ SCRIPT_TESTS = tests/ssim_oracle.sh tests/cli_errors.sh tests/cli_outdir.sh test
 # scene far from the origin against its control (tests/camrel/), GBAA's edges (tests/gbaa/)
 SCRIPT_TESTS += tests/reference_auto.sh tests/hard_cases.sh tests/hard_cases_long.sh \
 	tests/far_from_origin.sh tests/gbaa_edges.sh
+# what users read: no development history in help, man pages, README and docs; the job keys documented
+SCRIPT_TESTS += tests/product_text.sh tests/docs_job_keys.sh
 TESTS += $(SCRIPT_TESTS)
 EXTRA_DIST += $(SCRIPT_TESTS) tests/lib.sh tests/lsan.supp tests/oracle/ssim_oracle.py tests/junit.xsd \
 	tests/assets tests/hardcases/small-suite.json tests/hardcases/long-static.json \

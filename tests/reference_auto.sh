@@ -1,5 +1,5 @@
 #!/bin/sh
-# reference.samples "auto" (issue 17): N doubles until the N/2-vs-N convergence PSNR reaches the target or
+# reference.samples "auto": N doubles until the N/2-vs-N convergence PSNR reaches the target or
 # the cap; at the cap it is the fixed-N reference, bit for bit; it stops at the first N that reaches it.
 . "$(dirname "$0")/lib.sh"
 

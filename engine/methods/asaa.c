@@ -29,7 +29,7 @@ static const struct aa_param_def asaa_params[] = {
 		 "(not in the thesis; costs four scene renders on that frame)"},
 	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
 	 .help = "weight every colour the buffer update and the frame reconstruction sum or blend by Karis' "
-		 "1/(1+luma), so one HDR sample cannot dominate (issue 17)"},
+		 "1/(1+luma), so one HDR sample cannot dominate"},
 };
 
 enum { SRC_CURRENT, SRC_VELOCITY, SRC_SURFACE, SRC_BUFFERS, SRC_MOTION_A, SRC_MOTION_B, DST_UPDATED,

@@ -1,5 +1,5 @@
 /* SMAA's two look-up textures, generated here from the published method (the SMAA paper and the
- * reference scripts AreaTex.py / SearchTex.py, restated in ../shared/notes/smaa.md §5-§6), not copied:
+ * reference scripts AreaTex.py / SearchTex.py), not copied:
  * the area texture (160x560, R8G8: coverage for each crossing-edge pattern and distance pair) and the
  * search texture (64x16, R8: how many pixels of the last bilinear search step still belong to the line).
  * The bytes match the published Textures/AreaTex.h and SearchTex.h byte for byte (tests/unit). */

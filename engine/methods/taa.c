@@ -54,7 +54,7 @@ static const struct aa_param_def taa_params[] = {
 	 .help = "space of the clip box: YCoCg of c/(1+luma) (Karis) or of linear colour"},
 	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
 	 .help = "weight every colour the resolve sums or blends (the 3x3 filter, history and current, the "
-		 "still pixels' means) by Karis' 1/(1+luma), so one HDR sample cannot dominate (issue 17)"},
+		 "still pixels' means) by Karis' 1/(1+luma), so one HDR sample cannot dominate"},
 };
 _Static_assert(sizeof taa_params / sizeof taa_params[0] == P_COUNT, "taa_params lists every parameter");
 _Static_assert(P_COUNT <= AA_MAX_PARAMS, "taa's parameters fit in struct aa_method_params");

@@ -2,7 +2,7 @@
  * image shown alternately, per pixel in [0,1]. LDR-FLIP compares two displayed (sRGB or linear, [0,1])
  * images; HDR-FLIP tone maps linear HDR images at a range of exposures and keeps the largest LDR error.
  * The arithmetic follows the reference implementation (NVlabs/flip v1.6, CPU path) in float32 and in its
- * order of operations; ../shared/notes/flip.md holds the specification and its check values. */
+ * order of operations; tests/unit/test_flip.c checks its filter taps, colour transforms and constants. */
 #ifndef AA_FLIP_H
 #define AA_FLIP_H
 

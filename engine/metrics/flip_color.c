@@ -1,5 +1,5 @@
 /* FLIP's building blocks: colour spaces, the contrast-sensitivity and feature filters, tone mappers.
- * float32 throughout, in the reference implementation's order of operations (../shared/notes/flip.md). */
+ * float32 throughout, in the reference implementation's order of operations. */
 #include "metrics/flip.h"
 #include "metrics/flip_internal.h"
 

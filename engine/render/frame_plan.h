@@ -1,4 +1,4 @@
-/* The frame plan (DESIGN.md rule 3): which passes a job runs, from what the scene contains and what the
+/* The frame plan: which passes a job runs, from what the scene contains and what the
  * chosen methods need, each with the reason it runs or is skipped. */
 #ifndef AA_FRAME_PLAN_H
 #define AA_FRAME_PLAN_H

@@ -86,7 +86,7 @@ int aa_draw_order_front_to_back(const struct aa_box *bounds, int count, vec3 eye
 /* This frame's draw orders. Blended objects: back to front, as blending needs. Opaque and cut-out ones:
  * front to back by where their boxes end (aa_draw_order_front_to_back), so that llvmpipe's early depth
  * test rejects the hidden fragments of a floor or wall before they are shaded (docs/architecture.md,
- * "The scene pass"). The order can only change which of two exactly equal depths wins, and every method
+ * "Rendering"). The order can only change which of two exactly equal depths wins, and every method
  * and the reference draw through it. Without memory for the keys the scene's order stands. */
 static void sort_draws(struct aa_renderer *r, const struct aa_camera *camera)
 {

@@ -3,7 +3,7 @@
  * texels), sized by the slice's bounding sphere (the same size however the camera turns), centred on a
  * whole texel of a fixed light-space grid (so a camera moving by less than a texel moves nothing in the
  * map: no shimmer made here), and with a depth range that just holds the casters over the slice. Pure
- * maths: the renderer feeds it bounds and gets matrices (docs/architecture.md, "Shadows"). */
+ * maths: the renderer feeds it bounds and gets matrices (docs/architecture.md, "Rendering"). */
 #ifndef AA_SHADOW_FIT_H
 #define AA_SHADOW_FIT_H
 

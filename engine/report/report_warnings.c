@@ -8,7 +8,7 @@
 #include "results/results.h"
 #include "report/report.h"
 
-/* Under this convergence PSNR the reference's own noise is visible in method PSNRs (issue 18). */
+/* Under this convergence PSNR the reference's own noise is visible in method PSNRs. */
 #define CONVERGED_DB 40.0
 
 static void esc_text(FILE *o, const char *s)

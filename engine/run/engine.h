@@ -1,5 +1,5 @@
 /* The aalab engine API: an engine holds the Vulkan device and a scene cache; jobs run through it and
- * report what happens as events (DESIGN.md, "Engine API is events out"). */
+ * report what happens as events (docs/architecture.md, "One job"). */
 #ifndef AA_H
 #define AA_H
 

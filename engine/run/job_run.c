@@ -1,5 +1,5 @@
 /* Runs a job: for every frame on the camera path, the reference, then every method, then metrics against
- * the reference, reported as events (DESIGN.md, "The flow of one job"). */
+ * the reference, reported as events (docs/architecture.md, "One job"). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* Runs a job's cases one after another (DESIGN.md, "A job is a matrix of cases"): each case is an
+/* Runs a job's cases one after another (docs/job-format.md, "Suites"): each case is an
  * ordinary run of aa_job_run_scene, its events tagged with the case and its progress counted over the
  * whole job. */
 #include <stdio.h>

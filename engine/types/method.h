@@ -22,7 +22,7 @@ struct aa_param_def {
 	const char *help;
 };
 
-/* What a method asks of the frame plan (DESIGN.md rule 3). */
+/* What a method asks of the frame plan (render/frame_plan.h). */
 enum aa_need {
 	AA_NEED_DEPTH = 1u << 0,
 	AA_NEED_VELOCITY = 1u << 1,

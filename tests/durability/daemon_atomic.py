@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The job store's writes are atomic and ordered (issue 20), seen from outside: aalabd runs unchanged under
+"""The job store's writes are atomic and ordered, seen from outside: aalabd runs unchanged under
 tests/durability/fault_shim.so, which records its calls and fails one on demand.
   - Every job.json, scene.json, results.json and report.html is written to a temporary file, fsynced,
     renamed over the old one and its directory fsynced; the event log is fsynced before the job's final
@@ -144,7 +144,7 @@ try:
     c.close()
     stale = leftovers(d.state)
     if stale:
-        # the store does not yet remove temporaries of writes a crash interrupted (reported in issue 20)
+        # the store does not yet remove temporaries of writes a crash interrupted
         print("note: temporary files of the interrupted write remain after the restart: %s" % stale)
     check(d.stop() == 0, "aalabd exits 0")
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""aalab run's results are durable (issue 20): results.json and report.html are written atomically (a
+"""aalab run's results are durable: results.json and report.html are written atomically (a
 temporary file, fsync, rename and a directory fsync each, in the recorded calls) into a temporary folder
 beside --out, which is synced as a whole (syncfs: the frames too) and renamed into place when complete, and
 its parent directory synced after that rename.

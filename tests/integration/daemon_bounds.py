@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""aalabd's limits at their exact bounds (issue 20): every numeric configuration key accepts its minimum and
+"""aalabd's limits at their exact bounds: every numeric configuration key accepts its minimum and
 maximum and refuses one past either (and fractions of whole numbers), naming the key; a job exactly at
 max-job-budget is accepted and one over it refused, the budget counting the reference's samples and each
 method's; max-queued-jobs refuses the job that would exceed it, not the one before; `list` with a limit

@@ -1,4 +1,4 @@
-/* Alpha-tested geometry follows one rule per method family (issue 11, docs/methods.md): MSAA-style methods
+/* Alpha-tested geometry follows one rule per method family (docs/methods.md): MSAA-style methods
  * (msaa on both paths, rsaa, t2msaa, gbaa) test alpha once per pixel and triangle, so on a cut-out quad
  * that covers the whole image their output is none's except along the quad's diagonal, where two
  * triangles share pixels; supersampling (ssaa) tests each sample and alpha to coverage spreads alpha over

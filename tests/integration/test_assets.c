@@ -1,4 +1,4 @@
-/* Mesh files drawn as their authors made them (issue 12), on the GPU: one scene per material feature of
+/* Mesh files drawn as their authors made them, on the GPU: one scene per material feature of
  * tests/assets/ whose reference frame (the ground truth every method is scored against) is checked where the
  * answer is known (an orthographic camera, ambient light only: a dielectric shows ambient x (base + 0.04),
  * an unlit or emissive surface its colour exactly) and compared with a golden image within a tolerance;
@@ -467,7 +467,7 @@ static void test_every_method(void **state)
 }
 
 /* `horizon` with its sun casting shadows: the fences' shadows show in the reference. The map fitted to the
- * whole 400-unit scene (before issue 12) darkened 92 pixels of 57,600 by 10/255 or more; fitted to the
+ * whole 400-unit scene darkened 92 pixels of 57,600 by 10/255 or more; fitted to the
  * view, the rails' and posts' shadows near the camera resolve. */
 static int darker_pixels(const char *sun, bool shadows)
 {

@@ -1,4 +1,4 @@
-/* Job option debug_targets (issue 17): every intermediate image of a method is read back after each frame.
+/* Job option debug_targets: every intermediate image of a method is read back after each frame.
  * taa filters NaN/Inf out of what it blends (its output stays finite when the scene pass is poisoned), so
  * only the readback of its intermediates shows that its scene target held them; a clean run reads the
  * same targets and finds none; the `finite` verdict counts what the readback found. */

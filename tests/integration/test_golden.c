@@ -1,4 +1,4 @@
-/* Pinned quality (issue 20): every method (defaults, plus variants that take other code paths) on every
+/* Pinned quality: every method (defaults, plus variants that take other code paths) on every
  * shipped scene at a small fixed size, its PSNR (dB, from the mean MSE over the frames), SSIM and FLIP
  * against the reference, and each scene's reference itself (mean linear colour, convergence), compared with
  * tests/golden/quality.tsv. None of these numbers has an exact answer; they are pinned so that any change

@@ -1,4 +1,4 @@
-/* Stability of taa and taa-sobel (issues 4 and 10): NaN/Inf injected into one frame never reaches
+/* Stability of taa and taa-sobel: NaN/Inf injected into one frame never reaches
  * history or output; a camera cut resets history; during a fast pan over a textured wall, history that
  * reprojects from off-screen is rejected rather than clamped into garbage and the rest is reprojected
  * the right way; a still camera converges (64 frames: no PSNR spread, no flicker); after an HDR
@@ -169,7 +169,7 @@ static void test_fast_pan_over_texture(void **state)
 	aa_scene_free(scene);
 }
 
-/* Still thin wires, 64 frames (issue 10): after a warm-up of two jitter cycles the image has converged,
+/* Still thin wires, 64 frames: after a warm-up of two jitter cycles the image has converged,
  * so its PSNR does not move and it does not flicker, well ahead of none. Seed 001's resolve swings by
  * 0.6 dB with the jitter and flickers at ~3 here; the bounds leave it no chance. */
 static void test_still_camera_converges(void **state)
@@ -199,7 +199,7 @@ static void test_still_camera_converges(void **state)
 }
 
 /* The first frame is reconstructed at the pixel centre from the jittered samples, so it is no worse than
- * none (issue 10: frame 0 of seed 001's resolve is the jittered image, shifted by up to half a pixel:
+ * none (frame 0 of seed 001's resolve is the jittered image, shifted by up to half a pixel:
  * hard-edges at 320x180 0.6 dB under none). */
 static void test_first_frame(void **state)
 {
@@ -245,7 +245,7 @@ static int keep_teleport(const struct aa_event *ev, void *user)
  * pixels stay within 40 levels of the reference on average (drawn as floor they would be ~100 off) and
  * within 18 on average over the 13 frames (measured 15.3; a clamp instead of the clip toward the box
  * centre keeps more stale history: 20.5); the frame as a whole scores no lower than none by more than
- * 1 dB (issue 10's acceptance; seed 001's resolve falls 1.45 dB below none on the teleport frame). */
+ * 1 dB (seed 001's resolve falls 1.45 dB below none on the teleport frame). */
 static void test_hdr_teleport(void **state)
 {
 	(void)state;

@@ -1,4 +1,4 @@
-/* The temporal methods over long runs and in motion (issue 20): 128 still frames, past the running-average
+/* The temporal methods over long runs and in motion: 128 still frames, past the running-average
  * ramps (TAA's n/(n+1) stays below feedback_max 0.97 until frame 33 and below 0.99 until frame 99; ASAA's
  * and T2MSAA's sample counts), so that their defaults (feedback, sample caps, jitter) decide the numbers; a steady pan where reprojection must follow the motion the
  * right way; a camera cut that must look like a fresh start for several frames, not just the first.

@@ -1,9 +1,9 @@
-/* Stability of seed 000's temporal methods, asaa and t2msaa (issue 4, item 7): (a) NaN/Inf injected into
+/* Stability of seed 000's temporal methods, asaa and t2msaa: (a) NaN/Inf injected into
  * one frame's shading never reaches history or output; (b) 2,000 frames of a still camera stay within
  * 0.5 dB of frame 100 (no drift, no stall); (c) a camera cut resets history: the frame after the cut
  * equals a fresh run started there; (d) velocities pointing off-screen are rejected, not clamped: pixels
  * entering the view during a fast pan are no worse than `none` there; (e) a surface 150,000 units away
- * still accumulates under motion (issue 10: depth was clamped at 65000 in half-float history). */
+ * still accumulates under motion (depth clamped at 65000 in half-float history would stop it). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

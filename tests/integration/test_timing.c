@@ -1,4 +1,4 @@
-/* Timings as distributions (issue 11): methods interleave frame by frame in an order that rotates, so
+/* Timings as distributions: methods interleave frame by frame in an order that rotates, so
  * that no method always runs first after the reference; timing.repeat re-times each method's frame
  * without scoring it again, and never advances a method's history: the scored images of methods with
  * history are the same with and without repeats. */

@@ -1,5 +1,5 @@
-/* FLIP against the specification (../shared/notes/flip.md): filter taps, colour transforms and constants
- * at their published float32 values, the map against a direct, unoptimised evaluation of the notes' formulas
+/* FLIP against its published specification: filter taps, colour transforms and constants
+ * at their published float32 values, the map against a direct, unoptimised evaluation of the published formulas
  * (bit for bit, at several sizes, strip widths, ppd values and thread counts), known answers, pooling,
  * the colour map and HDR-FLIP's exposure loop. The reference test images are not available here, so the
  * published means (LDR 0.159691, HDR 0.283478) are not checked. */

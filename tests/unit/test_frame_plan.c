@@ -1,4 +1,4 @@
-/* The frame plan without a GPU (DESIGN.md rule 3): for every shipped scene and every method, exactly the
+/* The frame plan without a GPU: for every shipped scene and every method, exactly the
  * passes the scene's content and the method call for, in a fixed order, each with its reason. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,7 +29,7 @@ static const struct { const char *scene; bool shadow, cutout, animated; } scenes
 	{"moving-sphere", true, false, true},
 	{"spinning-wheel", false, false, true},
 	{"thin-wires", false, false, false},
-	/* issue 17's hard cases (docs/hard-cases.md) */
+	/* the hard cases (docs/hard-cases.md) */
 	{"specular-aliasing", false, false, false},
 	{"subpixel-specks", false, false, false},
 	{"moire", false, false, false},

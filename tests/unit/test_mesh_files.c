@@ -1,4 +1,4 @@
-/* Mesh files as their authors made them (issue 12), without a GPU: the test assets that
+/* Mesh files as their authors made them, without a GPU: the test assets that
  * scripts/make_scene_assets.py writes into tests/assets/ load with their materials, skins and animations,
  * each broken file is refused naming the file and the field or extension, and what is dropped or
  * approximated comes back as warnings. */
