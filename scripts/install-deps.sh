@@ -5,7 +5,7 @@
 set -e
 packages="build-essential autoconf automake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libopenimageio-dev openimageio-tools libpng-dev libjansson-dev libassimp-dev libcmocka-dev
+  libopenimageio-dev openimageio-tools libpng-dev zlib1g-dev libjansson-dev libassimp-dev libcmocka-dev
   python3 python3-numpy python3-skimage python3-lxml
   chromium systemd
   clang libclang-rt-14-dev

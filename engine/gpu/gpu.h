@@ -123,6 +123,9 @@ struct aa_shader_code {
 	size_t size; /* bytes */
 };
 const struct aa_shader_code *aa_shader_find(const char *name); /* "scene.vert" */
+/* Tests: pipelines made from now on get code instead of the embedded SPIR-V of `name` (NULL: the
+ * embedded again). At most a few names at once; returns -1 when full. */
+int aa_shader_substitute(const char *name, const struct aa_shader_code *code);
 
 /* ALPHA: "over" into colour attachment 0 (straight alpha); every other attachment keeps what it holds
  * (a G-buffer keeps the surface behind a blended one). */
@@ -152,6 +155,8 @@ struct aa_gpu_pipeline {
 	VkPipelineLayout layout;      /* owned when created by aa_gpu_layout_create */
 	VkDescriptorSetLayout set_layout;
 	VkPipelineBindPoint bind_point;
+	uint8_t code_sha256[32];      /* the SPIR-V of its stages and their specialization constants: what of
+				       * its pixels the GPU code decides (stored references are keyed by it) */
 };
 
 /* A pipeline layout with one descriptor set of `binding_count` bindings (types[i], counts[i] descriptors,

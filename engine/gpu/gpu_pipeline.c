@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "gpu/gpu.h"
+#include "util/sha256.h"
 #include "scene/scene.h"
 
 static int make_module_code(struct aa_gpu *gpu, const struct aa_shader_code *code, VkShaderModule *out,
@@ -24,14 +25,27 @@ static int make_module(struct aa_gpu *gpu, const char *name, VkShaderModule *out
 	const struct aa_shader_code *code = aa_shader_find(name);
 	if (!code)
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "shader '%s' is not embedded in this build", name);
-	VkShaderModuleCreateInfo ci = {
-		.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-		.codeSize = code->size,
-		.pCode = code->words,
-	};
-	if (vkCreateShaderModule(gpu->device, &ci, NULL, out) != VK_SUCCESS)
-		return aa_error_set(err, AA_ERR_GPU, "", "vkCreateShaderModule failed for %s", name);
-	return 0;
+	return make_module_code(gpu, code, out, err);
+}
+
+/* One stage into a pipeline's code digest: its SPIR-V and the specialization constants it is built with. */
+static void digest_stage(struct aa_sha256 *h, const char *tag, const struct aa_shader_code *code,
+			 const VkSpecializationInfo *spec)
+{
+	aa_sha256_update(h, tag, strlen(tag) + 1);
+	uint64_t size = code ? code->size : 0;
+	aa_sha256_update(h, &size, sizeof size);
+	if (code)
+		aa_sha256_update(h, code->words, code->size);
+	uint32_t entries = spec ? spec->mapEntryCount : 0;
+	aa_sha256_update(h, &entries, sizeof entries);
+	for (uint32_t i = 0; i < entries; i++) {
+		const VkSpecializationMapEntry *e = &spec->pMapEntries[i];
+		uint32_t v[3] = {e->constantID, e->offset, (uint32_t)e->size};
+		aa_sha256_update(h, v, sizeof v);
+	}
+	if (spec && spec->dataSize)
+		aa_sha256_update(h, spec->pData, spec->dataSize);
 }
 
 int aa_gpu_layout_create(struct aa_gpu *gpu, const VkDescriptorType *types, const uint32_t *counts,
@@ -72,6 +86,13 @@ int aa_gpu_graphics_pipeline_create(struct aa_gpu *gpu, const struct aa_gpu_grap
 				    struct aa_gpu_pipeline *p, struct aa_error *err)
 {
 	VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, gs = VK_NULL_HANDLE;
+	struct aa_sha256 h;
+	aa_sha256_init(&h);
+	digest_stage(&h, "vert", aa_shader_find(d->vert), d->vert_specialization);
+	digest_stage(&h, "geom", d->geom ? aa_shader_find(d->geom) : NULL, NULL);
+	digest_stage(&h, "frag", d->frag_code ? d->frag_code : d->frag ? aa_shader_find(d->frag) : NULL,
+		     d->frag_specialization);
+	aa_sha256_final(&h, p->code_sha256);
 	if (make_module(gpu, d->vert, &vs, err) ||
 	    (d->frag_code ? make_module_code(gpu, d->frag_code, &fs, err) : d->frag && make_module(gpu, d->frag, &fs, err)) ||
 	    (d->geom && make_module(gpu, d->geom, &gs, err))) {
@@ -200,6 +221,10 @@ int aa_gpu_compute_pipeline_create(struct aa_gpu *gpu, const char *comp, struct 
 				   struct aa_error *err)
 {
 	VkShaderModule cs;
+	struct aa_sha256 h;
+	aa_sha256_init(&h);
+	digest_stage(&h, "comp", aa_shader_find(comp), NULL);
+	aa_sha256_final(&h, p->code_sha256);
 	if (make_module(gpu, comp, &cs, err))
 		return -1;
 	VkComputePipelineCreateInfo ci = {

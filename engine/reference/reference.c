@@ -27,6 +27,7 @@ int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference 
 	/* each of the N samples stands for 1/N of the pixel: textures are read log2(sqrt(N)) mip levels finer,
 	 * so the accumulation converges to the box-filtered texture, not to trilinear blur */
 	struct aa_scene_target_desc desc = {.samples = 1, .texture_lod_bias = -0.5f * log2f((float)samples)};
+	ref->lod_bias = desc.texture_lod_bias;
 	/* summed with weight 1 and divided at readback, so N/2 and N share the sum */
 	if (aa_sample_accumulator_create(r, &desc, samples, 1.0f, "reference", NULL, &ref->sum, err))
 		return -1;

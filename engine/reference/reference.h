@@ -13,8 +13,12 @@ struct aa_reference {
 	struct aa_sample_accumulator sum; /* RGBA32F sum of the renders, a batch per summing pass */
 	struct aa_gpu_buffer readback, readback_half; /* the sums of N and of the first N/2 renders */
 	float (*offsets)[2];           /* per sample, in pixels, within [-0.5, 0.5) */
+	float lod_bias;                /* the texture LOD bias of its renders */
 	uint64_t memory_bytes;
 };
+
+/* Each jittered render tests alpha at its own sample position. */
+#define AA_REFERENCE_ALPHA_RULE "per-sample"
 
 /* The reference's jitter: Halton(2,3) points 1..n mapped to [-0.5, 0.5)^2. */
 void aa_reference_offsets(int n, float (*out)[2]);

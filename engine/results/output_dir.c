@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "results/results.h"
+#include "util/file_io.h"
 
 void aa_results_frame_relpath(const char *kind, const char *label, int ordinal, char *out, size_t size)
 {
@@ -22,26 +23,9 @@ void aa_results_linear_relpath(const char *label, int ordinal, char *out, size_t
 	snprintf(out, size, "linear/%s/%04d.rgba16f", dirname, ordinal);
 }
 
-/* mkdir -p: creates every missing directory of path up to its last '/'. */
 int aa_results_make_parents(char *path, struct aa_error *err)
 {
-	for (char *p = path + 1; *p; p++) {
-		if (*p != '/')
-			continue;
-		*p = '\0';
-		const bool failed = mkdir(path, 0755) < 0 && errno != EEXIST;
-		const int saved = errno;
-		struct stat st;
-		const bool is_dir = !failed && stat(path, &st) == 0 && S_ISDIR(st.st_mode);
-		if (failed || !is_dir) {
-			aa_error_set(err, AA_ERR_IO, "", "cannot create directory %s: %s", path,
-				     failed ? strerror(saved) : "a file of that name exists");
-			*p = '/';
-			return -1;
-		}
-		*p = '/';
-	}
-	return 0;
+	return aa_file_make_parents(path, err);
 }
 
 /* True when a component of path is "..". */

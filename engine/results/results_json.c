@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "results/results.h"
+#include "util/file_io.h"
 #include "methods/user_method.h"
 #include "methods/methods.h"
 #include "run/job_spec.h"
@@ -496,55 +497,8 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 int aa_results_write_file_atomic(const char *dir, const char *name, const char *data, size_t size,
 				 struct aa_error *err)
 {
-	char tmp[4096], final[4096];
-	if ((size_t)snprintf(final, sizeof final, "%s/%s", dir, name) >= sizeof final ||
-	    (size_t)snprintf(tmp, sizeof tmp, "%s/.%s.XXXXXX", dir, name) >= sizeof tmp)
-		return aa_error_set(err, AA_ERR_IO, "", "path %s/%s is too long", dir, name);
-	/* The temp file lives in the same directory so that rename() replaces the file in one step: a
-	 * reader sees the old file or the new one, never half of one. */
-	const int fd = mkstemp(tmp);
-	if (fd < 0)
-		return aa_error_set(err, AA_ERR_IO, "", "cannot create a file in %s: %s", dir, strerror(errno));
-	for (size_t done = 0; done < size;) {
-		const ssize_t w = write(fd, data + done, size - done);
-		if (w < 0 && errno == EINTR)
-			continue;
-		if (w <= 0) {
-			if (w == 0)
-				errno = EIO; /* a write of zero bytes leaves errno as it was */
-			aa_error_set(err, AA_ERR_IO, "", "cannot write %s: %s", tmp, strerror(errno));
-			goto fail;
-		}
-		done += (size_t)w;
-	}
-	if (fchmod(fd, 0644) < 0 || fsync(fd) < 0) {
-		aa_error_set(err, AA_ERR_IO, "", "cannot sync %s: %s", tmp, strerror(errno));
-		goto fail;
-	}
-	if (close(fd) < 0) {
-		aa_error_set(err, AA_ERR_IO, "", "cannot write %s: %s", tmp, strerror(errno));
-		unlink(tmp);
-		return -1;
-	}
-	if (rename(tmp, final) < 0) {
-		aa_error_set(err, AA_ERR_IO, "", "cannot rename %s to %s: %s", tmp, final, strerror(errno));
-		unlink(tmp);
-		return -1;
-	}
-	/* The rename itself is durable only once the directory is synced. */
-	const int dfd = open(dir, O_RDONLY | O_DIRECTORY);
-	if (dfd < 0 || fsync(dfd) < 0) {
-		aa_error_set(err, AA_ERR_IO, "", "cannot sync directory %s: %s", dir, strerror(errno));
-		if (dfd >= 0)
-			close(dfd);
-		return -1;
-	}
-	close(dfd);
-	return 0;
-fail:
-	close(fd);
-	unlink(tmp);
-	return -1;
+	const struct aa_file_part part = {data, size};
+	return aa_file_write_atomic(dir, name, &part, 1, err);
 }
 
 int aa_results_write_json_doc(const json_t *root, const char *dir, const char *name, struct aa_error *err)

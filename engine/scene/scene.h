@@ -283,6 +283,10 @@ struct aa_scene {
 	/* Every file the load read besides `file`, for caches of loaded scenes (scene_sources.c) */
 	struct aa_scene_source *sources; int source_count;
 	bool sources_unknown;   /* one could not be recorded: treat the scene as changed */
+	/* SHA-256 of the scene text and of every source's bytes as loaded (aa_scene_sources_digest); false for
+	 * scenes built in code and when a file changed while it was read: nothing can be keyed by it */
+	bool content_known;
+	uint8_t content_sha256[32];
 };
 
 /* scene_sources.c: while a load runs on this thread, collect into `scene` (NULL: stop) the files that the
@@ -292,6 +296,9 @@ void aa_scene_sources_collect(struct aa_scene *scene);
 void aa_scene_source_read(const char *path);
 bool aa_scene_sources_changed(const struct aa_scene *scene);
 void aa_scene_sources_free(struct aa_scene *scene);
+/* After a load: scene->content_sha256 over the scene text (size bytes) and each source's bytes in the order
+ * the load read them; content_known only when every source still has the size and time it was read with. */
+void aa_scene_sources_digest(struct aa_scene *scene, const void *text, size_t size);
 
 /* Finds a scene by name ("thin-wires") or path ("my/scene.json"). Names are looked up in, in order:
  * $AALAB_SCENE_DIR, the build tree's scenes/ (AA_SOURCE_SCENE_DIR), the installed pkgdatadir/scenes

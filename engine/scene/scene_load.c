@@ -16,6 +16,7 @@
 #include "scene/mesh_procedural.h"
 #include "scene/scene_json.h"
 #include "scene/texture.h"
+#include "util/file_io.h"
 
 /* ---------------------------------------------------------------- freeing */
 
@@ -711,7 +712,10 @@ int aa_scene_load_string(const char *json_text, const char *display_name, const 
 	json_t *root = json_loads(json_text, JSON_REJECT_DUPLICATES, &je);
 	if (!root)
 		return json_error(err, display, &je);
-	return load_json(root, display, base_dir, NULL, out, err);
+	if (load_json(root, display, base_dir, NULL, out, err))
+		return -1;
+	aa_scene_sources_digest(*out, json_text, strlen(json_text));
+	return 0;
 }
 
 int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
@@ -727,12 +731,19 @@ int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
 	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
 				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
-	json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
-	if (!root)
-		return json_error(err, path, &je);
+	/* parsed from the bytes that are hashed: the content digest is of what was loaded */
+	uint8_t *text;
+	size_t size;
+	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, err))
+		return -1;
+	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
 	char dir[PATH_MAX];
 	snprintf(dir, sizeof dir, "%s", path);
-	return load_json(root, path, dirname(dir), path, out, err);
+	int rc = root ? load_json(root, path, dirname(dir), path, out, err) : json_error(err, path, &je);
+	if (rc == 0)
+		aa_scene_sources_digest(*out, text, size);
+	free(text);
+	return rc;
 }
 
 /* ---------------------------------------------------------------- a summary without meshes */

@@ -12,7 +12,7 @@ LAYERS = ["util", "image", "metrics", "scene", "gpu", "types", "render", "refere
           "results", "report", "compare"]
 RANK = {name: i for i, name in enumerate(LAYERS)}
 # headers generated at build time, found on the include path
-GENERATED = {"shader_list.h", "viewer_assets.h"}
+GENERATED = {"shader_list.h", "viewer_assets.h", "reference_code.h"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 
