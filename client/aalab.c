@@ -8,7 +8,8 @@ static const struct aa_cmd_entry commands[] = {
 	/* name, usage, summary, exec[, full help] */
 	{"run", "run [JOB.json|SUITE] [--scene NAME] [--path PATH] [--methods LIST] [--frames N] [--size WxH] "
 		"[--reference-samples N] [--repeat N] [--over-threshold X] [--label KEY=VALUE] [--out DIR] [--device SEL] "
-		"[--no-images] [--no-viewer] [--exr] [--json] [--quiet] [--shard I/N]",
+		"[--no-images] [--no-viewer] [--exr] [--json] [--quiet] [--shard I/N] [--reference-cache DIR|off] "
+		"[--reference-cache-size SIZE] [--explain-key]",
 	 "render a comparison job and write results, images and a report", cmd_run, aa_run_help},
 	{"scenes", AA_SCENES_USAGE, "list the scenes that can be named with --scene", cmd_scenes,
 	 "usage: aalab " AA_SCENES_USAGE "\n\n"
@@ -39,6 +40,8 @@ static const struct aa_cmd_entry commands[] = {
 	 "compare two runs per case and method, and gate on quality and cost", cmd_compare, aa_compare_help},
 	{"merge", "merge --out DIR SHARD_DIR... [--force] [--json] [--quiet]",
 	 "join the result folders of a job's shards into the results of the whole job", cmd_merge, aa_merge_help},
+	{"cache", "cache stats|clear|verify [--sample N] [--reference-cache DIR] [--json]",
+	 "show, clear or verify the store of reference frames runs share", cmd_cache, aa_cache_help},
 	{"slurm", "slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G] [--time T] [--submit]",
 	 "write (and submit) a Slurm array job of a job's shards and the job that merges them", cmd_slurm, aa_slurm_help},
 };

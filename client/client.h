@@ -50,6 +50,12 @@ extern const char aa_diff_help[];
 int cmd_merge(int argc, char **argv);
 int cmd_slurm(int argc, char **argv);
 extern const char aa_merge_help[], aa_slurm_help[];
+/* cmd_cache.c: aalab cache (stats, clear, verify of the reference store), and where the store is: the
+ * folder given (--reference-cache DIR), none for "off" (out is ""), else $XDG_CACHE_HOME/aalab/references
+ * or ~/.cache/aalab/references. -1 after printing why. */
+int cmd_cache(int argc, char **argv);
+extern const char aa_cache_help[];
+int aa_reference_cache_location(const char *given, char *out, size_t size);
 
 /* job_args.c: the job flags of run and submit. The long options, for getopt_long with a longindex;
  * aa_job_flag(cmd, option name, value, job) returns 0 (set), -1 (bad value, printed) or 1 (not a job flag). */

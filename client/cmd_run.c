@@ -54,6 +54,15 @@ const char aa_run_help[] =
 	"                          a suite's whole cases; in this process. 'aalab merge' joins the shards\n"
 	"                          (docs/farm.md)\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
+	"  --reference-cache DIR|off  the store of reference frames: each frame's reference is looked up by\n"
+	"                          the hash of what decides its pixels and rendered only when it is not\n"
+	"                          stored (default $XDG_CACHE_HOME/aalab/references or ~/.cache/aalab/\n"
+	"                          references; off: render every reference, store none). Runs in this process\n"
+	"  --reference-cache-size SIZE  keep the store under SIZE, least recently used out first (default\n"
+	"                          4G; K, M, G, T)\n"
+	"  --explain-key           print each frame's reference key and whether the store has it, the first\n"
+	"                          frame's part by part (scene and file bytes, camera, time, size, samples,\n"
+	"                          pattern, alpha rule, LOD bias, shaders, code, device, driver), on stderr\n"
 	"  --no-images             write results.json and report.html but no per-frame PNGs\n"
 	"  --no-viewer             keep the PNGs but leave report.html's image viewer out, and with it\n"
 	"                          viewer/, the frames again as scripts (~1.3x their disk; job field viewer)\n"
@@ -90,6 +99,14 @@ static int on_event(const struct aa_event *ev, void *user)
 		o->failed_writes++;
 	else if (o->images && (ev->type == AA_EVENT_REFERENCE_FRAME || ev->type == AA_EVENT_METHOD_FRAME))
 		o->frames_written++;
+	if (ev->type == AA_EVENT_REFERENCE_KEY && ev->text) {
+		/* the first frame of each case part by part, the others a line each */
+		const char *nl = strchr(ev->text, '\n');
+		if (ev->frame_ordinal == 0 || !nl)
+			fputs(ev->text, stderr);
+		else
+			fprintf(stderr, "%.*s\n", (int)(nl - ev->text), ev->text);
+	}
 	if (ev->type == AA_EVENT_PROGRESS && !o->quiet) {
 		if (o->tty)
 			aa_progress_update(ev->done, ev->total, "rendering");
@@ -129,7 +146,7 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 int cmd_run(int argc, char **argv)
 {
 	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD, OPT_EXR,
-	       OPT_NO_VIEWER, OPT_DEBUG_TARGETS };
+	       OPT_NO_VIEWER, OPT_DEBUG_TARGETS, OPT_REFERENCE_CACHE, OPT_REFERENCE_CACHE_SIZE, OPT_EXPLAIN_KEY };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
@@ -137,10 +154,15 @@ int cmd_run(int argc, char **argv)
 		{"local", no_argument, 0, OPT_LOCAL}, {"help", no_argument, 0, OPT_HELP},
 		{"force", no_argument, 0, OPT_FORCE}, {"shard", required_argument, 0, OPT_SHARD},
 		{"exr", no_argument, 0, OPT_EXR}, {"no-viewer", no_argument, 0, OPT_NO_VIEWER},
-		{"debug-targets", no_argument, 0, OPT_DEBUG_TARGETS}, {0, 0, 0, 0},
+		{"debug-targets", no_argument, 0, OPT_DEBUG_TARGETS},
+		{"reference-cache", required_argument, 0, OPT_REFERENCE_CACHE},
+		{"reference-cache-size", required_argument, 0, OPT_REFERENCE_CACHE_SIZE},
+		{"explain-key", no_argument, 0, OPT_EXPLAIN_KEY}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
-	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL;
+	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL, *cache_given = NULL;
+	uint64_t cache_bytes = 0;
+	bool explain_key = false;
 	bool images = true, print_json = false, quiet = false, local = false, force = false, exr = false;
 	struct aa_out_dir od = {0};
 	struct aa_job_spec spec;
@@ -166,6 +188,16 @@ int cmd_run(int argc, char **argv)
 		case OPT_EXR: exr = true; break;
 		case OPT_NO_VIEWER: json_object_set_new(overrides, "viewer", json_false()); break;
 		case OPT_DEBUG_TARGETS: json_object_set_new(overrides, "debug_targets", json_true()); break;
+		case OPT_REFERENCE_CACHE: cache_given = optarg; break;
+		case OPT_REFERENCE_CACHE_SIZE: {
+			struct aa_error e = {0};
+			if (aa_reference_cache_parse_size("--reference-cache-size", optarg, &cache_bytes, &e)) {
+				fprintf(stderr, "aalab run: %s: %s\n", e.path, e.message);
+				goto out;
+			}
+			break;
+		}
+		case OPT_EXPLAIN_KEY: explain_key = true; break;
 		case OPT_HELP: fputs(aa_run_help, stdout); status = AA_EXIT_OK; goto out;
 		default: fputs(aa_run_help, stderr); goto out;
 		}
@@ -202,6 +234,18 @@ int cmd_run(int argc, char **argv)
 		json_decref(job);
 		goto out;
 	}
+	if ((cache_given || cache_bytes || explain_key) && connect) {
+		fprintf(stderr, "aalab run: --reference-cache, --reference-cache-size and --explain-key are of a run in "
+			"this process; aalabd has its own store (its reference-cache setting)\n");
+		json_decref(job);
+		goto out;
+	}
+	char cache_dir[2048];
+	if (aa_reference_cache_location(cache_given, cache_dir, sizeof cache_dir)) {
+		json_decref(job);
+		goto out;
+	}
+	spec.explain_key = explain_key;
 	if (shard_text && connect) {
 		fprintf(stderr, "aalab run: --shard runs in this process; leave out --connect\n");
 		json_decref(job);
@@ -213,7 +257,8 @@ int cmd_run(int argc, char **argv)
 	 * when its configuration allows (aalabd(8)). */
 	struct aa_conn *conn = NULL;
 	char cerr[1200];
-	bool remote = !local && !device && !shard_text && (!user_methods || connect);
+	bool remote = !local && !device && !shard_text && !cache_given && !cache_bytes && !explain_key &&
+		      (!user_methods || connect);
 	for (int i = 0; i < aa_job_case_count(&spec); i++) {
 		struct aa_job_spec one;
 		aa_job_case(&spec, i, &one);
@@ -275,6 +320,16 @@ int cmd_run(int argc, char **argv)
 		fprintf(stderr, "aalab run: %s\n", err.message);
 		status = err.path[0] ? AA_EXIT_USAGE : AA_EXIT_FAILED;
 		goto out;
+	}
+	/* the store: a folder given that cannot be used is an error; the default one only a warning */
+	if (cache_dir[0] && aa_engine_set_reference_cache(engine, cache_dir, cache_bytes, &err)) {
+		if (cache_given) {
+			fprintf(stderr, "aalab run: --reference-cache: %s\n", err.message);
+			aa_engine_destroy(engine);
+			goto out;
+		}
+		fprintf(stderr, "aalab run: warning: the reference store %s cannot be used (%s): every reference is "
+			"rendered\n", cache_dir, err.message);
 	}
 	struct run_output ro = {.dir = od.work, .spec = &spec, .images = images && spec.keep_frames,
 				 .quiet = quiet, .tty = isatty(STDERR_FILENO)};

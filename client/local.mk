@@ -5,5 +5,5 @@ aalab_SOURCES = client/aalab.c client/client.h client/job_args.c client/method_f
 	client/verdict_table.c \
 	client/cmd_run.c client/cmd_list.c client/cmd_suites.c client/cmd_diff.c client/cmd_compare.c \
 	client/cmd_merge.c client/cmd_slurm.c client/cmd_submit.c client/cmd_watch.c client/cmd_status.c \
-	client/cmd_jobs.c client/cmd_cancel.c client/cmd_get.c
+	client/cmd_jobs.c client/cmd_cancel.c client/cmd_get.c client/cmd_cache.c
 aalab_LDADD = $(ENGINE_LIBS)

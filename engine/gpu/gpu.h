@@ -29,6 +29,7 @@ struct aa_gpu {
 	double timestamp_period_ns;
 	VkSampleCountFlags color_sample_counts; /* supported for RGBA16F + D32F attachments */
 	char driver_info[256];
+	char driver_build[256];  /* the driver's name and build ("llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"), or "" */
 	VkSampler sampler_nearest, sampler_linear, sampler_linear_clamp, sampler_shadow;
 	/* called by aa_gpu_image_destroy before an image goes (job option debug_targets: its registry
 	 * forgets the image); NULL otherwise */
@@ -76,7 +77,7 @@ void aa_gpu_buffer_destroy(struct aa_gpu *gpu, struct aa_gpu_buffer *buf);
 int aa_gpu_buffer_upload(struct aa_gpu *gpu, struct aa_gpu_buffer *buf, const void *data, VkDeviceSize size,
 			 VkBufferUsageFlags usage, struct aa_error *err);
 /* Uploads mip levels of an RGBA8 image (levels[i] tightly packed) and leaves it SHADER_READ_ONLY. Other
- * 8-bit formats (RG8, R8) work too: the texel size comes from img->format. */
+ * formats (RG8, R8, RGBA32F) work too: the texel size comes from img->format. */
 int aa_gpu_image_upload_rgba8(struct aa_gpu *gpu, struct aa_gpu_image *img, const uint8_t *const *levels,
 			      struct aa_error *err);
 

@@ -285,6 +285,14 @@ int aa_gpu_create(struct aa_gpu *gpu, const char *device_select, bool validation
 	gpu->timestamp_period_ns = gpu->properties.limits.timestampPeriod;
 	gpu->color_sample_counts = gpu->properties.limits.framebufferColorSampleCounts &
 				   gpu->properties.limits.framebufferDepthSampleCounts;
+	/* the driver's own name and build (Vulkan 1.2): what stored references are keyed by besides the ids */
+	if (gpu->properties.apiVersion >= VK_API_VERSION_1_2) {
+		VkPhysicalDeviceDriverProperties driver = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+		VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+		vkGetPhysicalDeviceProperties2(gpu->physical, &p2);
+		snprintf(gpu->driver_build, sizeof gpu->driver_build, "%.120s %.120s", driver.driverName,
+			 driver.driverInfo);
+	}
 	uint32_t v = gpu->properties.driverVersion, api = gpu->properties.apiVersion;
 	snprintf(gpu->driver_info, sizeof gpu->driver_info, "Vulkan %u.%u.%u, driver 0x%x%s",
 		 VK_API_VERSION_MAJOR(api), VK_API_VERSION_MINOR(api), VK_API_VERSION_PATCH(api), v,

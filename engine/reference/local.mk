@@ -6,7 +6,8 @@ libaaengine_a_SOURCES += engine/reference/reference.h engine/reference/reference
 glsl_files += shaders/accumulate.frag shaders/accumulate_batch.frag
 # The stored references (a folder of entries keyed by content: reference_key.c, reference_cache.c).
 libaaengine_a_SOURCES += engine/reference/reference_key.h engine/reference/reference_key.c \
-	engine/reference/reference_cache.h engine/reference/reference_cache.c
+	engine/reference/reference_cache.h engine/reference/reference_cache.c \
+	engine/reference/reference_store.h engine/reference/reference_store.c
 # The key's "code" part: the SHA-256 of the C that decides a reference's pixels (every layer up to this
 # one), so that a build with other rendering code never reads this one's entries. Written at build time.
 reference_code_files = $(filter engine/util/% engine/image/% engine/scene/% engine/gpu/% engine/render/% \

@@ -48,7 +48,11 @@ void aa_reference_destroy(struct aa_reference *ref)
 
 static void read_average(const struct aa_gpu_buffer *sum_buffer, int count, struct aa_image_rgbaf *out)
 {
-	const float *sum = sum_buffer->mapped;
+	aa_reference_average(sum_buffer->mapped, count, out);
+}
+
+void aa_reference_average(const float *sum, int count, struct aa_image_rgbaf *out)
+{
 	size_t n = (size_t)out->width * out->height * 4;
 	float scale = 1.0f / (float)count;
 	for (size_t i = 0; i < n; i++)

@@ -40,15 +40,19 @@ int aa_reference_render_count(struct aa_reference *ref, struct aa_gpu_timer *tim
 int aa_reference_extend(struct aa_reference *ref, struct aa_gpu_timer *timer, int from, int to,
 			struct aa_image_rgbaf *full, double *gpu_ms, double *cpu_ms, struct aa_error *err);
 
+/* out = sum / count, as every reference image is read from its running sum. */
+void aa_reference_average(const float *sum, int count, struct aa_image_rgbaf *out);
+
 /* reference.samples "auto" (engine/reference/reference_auto.c): per frame, N starts at
  * AA_REFERENCE_AUTO_START and doubles until the N/2-vs-N convergence PSNR (8-bit sRGB) reaches
  * target_psnr or N reaches ref->samples (the cap). full/half get the N and N/2 images, full8/half8 their
  * sRGB encodings, conv their comparison, *samples the N reached. */
 #define AA_REFERENCE_AUTO_START 8
 struct aa_metrics;
+struct aa_reference_store; /* reference_store.h: levels read from and written to the store, or NULL */
 int aa_reference_render_auto(struct aa_reference *ref, struct aa_gpu_timer *timer, double target_psnr,
 			     struct aa_image_rgbaf *full, struct aa_image_rgbaf *half, struct aa_image_rgba8 *full8,
 			     struct aa_image_rgba8 *half8, int *samples, struct aa_metrics *conv, double *gpu_ms,
-			     double *cpu_ms, struct aa_error *err);
+			     double *cpu_ms, struct aa_reference_store *store, struct aa_error *err);
 
 #endif

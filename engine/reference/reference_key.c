@@ -178,12 +178,15 @@ static void device_part(struct aa_reference_key *key, const struct aa_reference_
 static void driver_part(struct aa_reference_key *key, const struct aa_reference_key_inputs *in)
 {
 	struct part p = begin(key, "driver");
-	bytes(&p, &in->driver_version, sizeof in->driver_version);
-	text(&p, in->driver_info);
+	uint32_t versions[2] = {in->driver_version, in->api_version};
+	bytes(&p, versions, sizeof versions);
+	text(&p, in->driver_build);
 	static const uint8_t none[16];
 	bytes(&p, in->pipeline_cache_uuid ? in->pipeline_cache_uuid : none, 16);
-	snprintf(p.out->value, sizeof p.out->value, "version 0x%x, %s", in->driver_version,
-		 in->driver_info ? in->driver_info : "");
+	snprintf(p.out->value, sizeof p.out->value, "%s, version 0x%x, Vulkan %u.%u.%u",
+		 in->driver_build && in->driver_build[0] ? in->driver_build : "(no name)", in->driver_version,
+		 VK_API_VERSION_MAJOR(in->api_version), VK_API_VERSION_MINOR(in->api_version),
+		 VK_API_VERSION_PATCH(in->api_version));
 	end(&p);
 }
 
@@ -276,7 +279,8 @@ bool aa_reference_key_inputs_of(const struct aa_reference *ref, const struct aa_
 	in->device_name = gpu->properties.deviceName;
 	in->pipeline_cache_uuid = gpu->properties.pipelineCacheUUID;
 	in->driver_version = gpu->properties.driverVersion;
-	in->driver_info = gpu->driver_info;
+	in->api_version = gpu->properties.apiVersion;
+	in->driver_build = gpu->driver_build;
 	return in->scene_known;
 }
 

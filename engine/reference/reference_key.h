@@ -34,8 +34,8 @@ struct aa_reference_key_inputs {
 	uint32_t vendor_id, device_id;
 	const char *device_name;
 	const uint8_t *pipeline_cache_uuid; /* 16 bytes: the driver build */
-	uint32_t driver_version;
-	const char *driver_info;
+	uint32_t driver_version, api_version;
+	const char *driver_build;      /* the driver's name and build */
 };
 
 #define AA_REFERENCE_KEY_PARTS 13

@@ -73,6 +73,13 @@ void aa_sample_accumulator_clear(struct aa_sample_accumulator *acc, VkCommandBuf
 	acc->pending = 0;
 }
 
+int aa_sample_accumulator_load(struct aa_sample_accumulator *acc, const float *sum, struct aa_error *err)
+{
+	const uint8_t *level = (const uint8_t *)sum;
+	acc->pending = 0;
+	return aa_gpu_image_upload_rgba8(acc->r->gpu, &acc->sums[acc->current], &level, err);
+}
+
 static void add_pending(struct aa_sample_accumulator *acc, VkCommandBuffer cmd)
 {
 	if (acc->pending == 0)

@@ -28,6 +28,8 @@ int aa_sample_accumulator_create(struct aa_renderer *r, const struct aa_scene_ta
 void aa_sample_accumulator_destroy(struct aa_sample_accumulator *acc);
 /* Records: the running sum set to zero. */
 void aa_sample_accumulator_clear(struct aa_sample_accumulator *acc, VkCommandBuffer cmd);
+/* Sets the running sum to `sum` (RGBA32F, frame-sized): a sum read back earlier, to add more renders to. */
+int aa_sample_accumulator_load(struct aa_sample_accumulator *acc, const float *sum, struct aa_error *err);
 /* Records one scene render jittered by (jx, jy) pixels; a full batch is added to the sum. */
 void aa_sample_accumulator_render(struct aa_sample_accumulator *acc, VkCommandBuffer cmd, float jx, float jy);
 /* Records the addition of any renders still pending; returns the image holding the sum of every render

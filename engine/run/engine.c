@@ -34,6 +34,7 @@ void aa_engine_destroy(struct aa_engine *e)
 	if (!e)
 		return;
 	aa_renderer_destroy(e->kept_renderer);
+	aa_reference_cache_close(e->reference_cache);
 	for (int i = 0; i < AA_UPLOAD_CACHE_SLOTS; i++)
 		aa_scene_upload_destroy(e->uploads[i]);
 	aa_gpu_destroy(&e->gpu);
@@ -48,6 +49,25 @@ int aa_engine_validation_errors(const struct aa_engine *e)
 const char *aa_engine_device_name(const struct aa_engine *e)
 {
 	return e->gpu.properties.deviceName;
+}
+
+int aa_engine_set_reference_cache(struct aa_engine *e, const char *dir, uint64_t max_bytes, struct aa_error *err)
+{
+	struct aa_reference_cache *c = NULL;
+	if (dir && aa_reference_cache_open(dir, max_bytes, &c, err))
+		return -1;
+	aa_reference_cache_close(e->reference_cache);
+	e->reference_cache = c;
+	return 0;
+}
+
+bool aa_engine_reference_cache_stats(struct aa_engine *e, struct aa_reference_cache_stats *out)
+{
+	memset(out, 0, sizeof *out);
+	if (!e->reference_cache)
+		return false;
+	*out = aa_reference_cache_stats(e->reference_cache);
+	return true;
 }
 
 void aa_engine_set_upload_budget(struct aa_engine *e, uint64_t bytes)

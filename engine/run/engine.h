@@ -9,6 +9,7 @@
 #include "util/error.h"
 #include "types/job.h"
 #include "scene/scene.h"
+#include "reference/reference_cache.h"
 
 struct aa_engine;
 
@@ -34,6 +35,14 @@ struct aa_upload_stats {
 };
 void aa_engine_set_upload_budget(struct aa_engine *engine, uint64_t bytes);
 struct aa_upload_stats aa_engine_upload_stats(const struct aa_engine *engine);
+
+/* The store of references (engine/reference/reference_cache.h, docs/reference-cache.md) that jobs read
+ * and write: a folder (created), at most max_bytes (0: the default); NULL dir: none (the default). An
+ * error names the field "reference-cache". */
+int aa_engine_set_reference_cache(struct aa_engine *engine, const char *dir, uint64_t max_bytes,
+				  struct aa_error *err);
+/* The store's counts since it was set; false without one. */
+bool aa_engine_reference_cache_stats(struct aa_engine *engine, struct aa_reference_cache_stats *out);
 
 /* Frees what a result holds (its frames and timed renders), not the struct itself. */
 void aa_job_result_free(struct aa_job_result *r);

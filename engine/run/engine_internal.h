@@ -5,6 +5,7 @@
 #include "run/engine.h"
 #include "gpu/gpu.h"
 #include "render/scene_upload.h"
+#include "reference/reference_cache.h"
 
 #define AA_UPLOAD_CACHE_SLOTS 16
 
@@ -15,6 +16,7 @@ struct aa_engine {
 	uint64_t upload_budget, upload_clock;
 	struct aa_upload_stats upload_stats;
 	struct aa_renderer *kept_renderer; /* the last job's, with its compiled pipelines (engine.c) */
+	struct aa_reference_cache *reference_cache; /* the store of references jobs use, or NULL */
 };
 
 /* The GPU copy of a scene: from the cache, or uploaded now (and cached). Owned by the engine. */

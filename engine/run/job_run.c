@@ -11,6 +11,7 @@
 #include "run/engine_internal.h"
 #include "render/frame_plan.h"
 #include "reference/reference.h"
+#include "reference/reference_store.h"
 #include "render/renderer.h"
 #include "methods/methods.h"
 
@@ -79,6 +80,7 @@ struct job_state {
 	const struct aa_scene *borrowed; /* or given by the caller */
 	struct aa_renderer *renderer;
 	struct aa_reference reference;
+	struct aa_reference_store store; /* the engine's store of references, if it has one */
 	struct aa_method_state *states[AA_MAX_METHODS];
 	/* timing.repeat > 1: a second instance of each method with history, never scored, that re-times its
 	 * frames so that the scored instance's history advances exactly once per frame */
@@ -190,6 +192,11 @@ static int setup(struct job_state *js, struct aa_error *err)
 	res->reference.auto_samples = spec->reference_auto;
 	res->reference.target_psnr = spec->reference_auto ? spec->reference_target_psnr : NAN;
 	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
+	/* a frame with injected NaN (tests) is not the reference its key names */
+	aa_reference_store_job(&js->store, spec->inject_nonfinite_frame < 0 ? js->engine->reference_cache : NULL,
+			       spec->reference_verify, spec->explain_key, &res->reference.cache, res->reference.pattern,
+			       js->scene->file, spec->path, spec->width, spec->height, spec->reference_samples,
+			       spec->reference_auto);
 	res->reference.memory_bytes = js->reference.memory_bytes;
 	res->reference.frames = calloc((size_t)spec->frames, sizeof *res->reference.frames);
 	if (!res->reference.frames)
@@ -242,7 +249,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 	return 0;
 }
 
-static int render_reference(struct job_state *js, int ordinal, bool reuse, struct aa_error *err)
+static int render_reference(struct job_state *js, int ordinal, bool reuse, const struct aa_frame_ctx *ctx,
+			    struct aa_error *err)
 {
 	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
 	if (js->prev_ref8.pixels)
@@ -257,16 +265,21 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 	}
 	rf->frame = js->spec->first_frame + ordinal;
 	struct aa_metrics m;
+	aa_reference_store_frame(&js->store, &js->reference, ctx);
 	if (js->spec->reference_auto) {
 		if (aa_reference_render_auto(&js->reference, &js->timer, js->spec->reference_target_psnr, &js->full,
 					     &js->half, &js->ref8, &js->half8, &rf->samples, &m, &rf->gpu_ms,
-					     &rf->cpu_ms, err))
+					     &rf->cpu_ms, &js->store, err))
 			return -1;
 		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
 	} else {
-		if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms,
-					err))
-			return -1;
+		/* the store's entry when it has one, else rendered and stored */
+		if (!aa_reference_store_load(&js->store, &js->reference, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms)) {
+			if (aa_reference_render(&js->reference, &js->timer, &js->full, &js->half, &rf->gpu_ms,
+						&rf->cpu_ms, err))
+				return -1;
+			aa_reference_store_save(&js->store, &js->reference, rf->gpu_ms, rf->cpu_ms);
+		}
 		rf->samples = js->spec->reference_samples;
 		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
 		aa_image_encode_srgb8(&js->full, &js->ref8);
@@ -277,6 +290,7 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, struc
 	rf->convergence_mse = m.mse;
 	rf->convergence_psnr = m.psnr;
 	rf->convergence_identical = m.identical;
+	aa_reference_store_frame_done(&js->store, rf->cache, sizeof rf->cache);
 	js->result->reference.frame_count = ordinal + 1;
 	return 0;
 }
@@ -511,7 +525,11 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 			continue;
 		}
 		if (rc == 0)
-			rc = render_reference(&js, ordinal, ordinal > 0 && still, err);
+			rc = render_reference(&js, ordinal, ordinal > 0 && still, &ctx, err);
+		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_KEY, .result = js.result, .frame = ctx.frame,
+				       .frame_ordinal = ordinal, .text = js.store.explanation};
+		if (rc == 0 && spec->explain_key && js.store.explanation[0])
+			rc = emit(on_event, user, &ev, err);
 		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
 				       .frame_ordinal = ordinal, .image = &js.ref8, .linear = &js.full};
 		if (rc == 0)

@@ -90,6 +90,11 @@ struct aa_job_spec {
 	bool verdicts;             /* job key "verdicts": judge every case and method (docs/hard-cases.md) */
 	bool debug_targets;        /* job key "debug_targets": read back every intermediate image of every
 				    * method after each frame and count its non-finite texels (engine/render/debug_targets.c) */
+	/* not in job JSON: the reference store. explain_key: an AA_EVENT_REFERENCE_KEY before each frame's
+	 * reference; reference_verify (aalab cache verify): every reference is rendered and compared bit for
+	 * bit with its stored entry, nothing is read from or written to the store */
+	bool explain_key;
+	bool reference_verify;
 };
 
 /* Shared limits (the daemon adds its own budget on top). */
@@ -164,6 +169,8 @@ struct aa_method_result {
 
 struct aa_reference_frame {
 	int frame;
+	char cache[12];            /* the reference store: "hit", "miss", "continued" (an auto reference went on
+				    * from a stored sum), "" without a store or when the frame cannot be keyed */
 	double gpu_ms;             /* all N jittered renders + accumulation */
 	double cpu_ms;
 	bool convergence_identical;
@@ -174,6 +181,23 @@ struct aa_reference_frame {
 	int samples;               /* N this frame's reference used (reference.samples "auto": the N reached) */
 };
 
+/* What the reference store did for a job's frames (engine/reference/reference_cache.h). */
+#define AA_REFERENCE_CACHE_WARNINGS 4
+struct aa_reference_cache_result {
+	bool used;                 /* the job had a store (off: false, and nothing else is set) */
+	int hits;                  /* frames served whole from the store */
+	int misses;                /* frames rendered, whole or (continued) in part */
+	int continued;             /* of the misses: auto references that went on from a stored sum */
+	int unkeyed;               /* frames that cannot be keyed (a scene built in code, or a file that changed
+				    * while the scene loaded): rendered, not stored */
+	uint64_t bytes_read, bytes_written;
+	int discarded;             /* entries that failed their check: removed and rendered again */
+	int verified, mismatched;  /* verify mode (aalab cache verify): entries compared bit for bit, and those
+				    * that differed from the render */
+	int warning_count;         /* the first few messages, e.g. of a discarded entry */
+	char warnings[AA_REFERENCE_CACHE_WARNINGS][256];
+};
+
 struct aa_reference_result {
 	int samples;               /* N, or with auto_samples the cap (reference.max_samples) */
 	bool auto_samples;         /* reference.samples "auto": each frame's N is in frames[].samples */
@@ -182,6 +206,7 @@ struct aa_reference_result {
 	uint64_t memory_bytes;
 	int frame_count;
 	struct aa_reference_frame *frames;
+	struct aa_reference_cache_result cache;
 };
 
 struct aa_plan_entry {
@@ -220,6 +245,8 @@ enum aa_event_type {
 	                            * flip_map = FLIP error map */
 	AA_EVENT_PROGRESS,         /* done/total units of work */
 	AA_EVENT_JOB_FINISHED,
+	AA_EVENT_REFERENCE_KEY,    /* spec.explain_key: text = the frame's reference key, part by part, and
+				    * whether the store has it */
 };
 
 struct aa_event {
@@ -233,6 +260,7 @@ struct aa_event {
 	const struct aa_image_rgba8 *diff;
 	const struct aa_image_rgba8 *flip_map; /* METHOD_FRAME: the FLIP error map in the magma colour map */
 	int done, total;           /* PROGRESS */
+	const char *text;          /* REFERENCE_KEY */
 	int case_index;            /* the case of a suite (aa_suite_run); 0 otherwise */
 };
 
