@@ -194,9 +194,11 @@ static int verify(struct aa_reference_cache *c, int sample, bool json)
 			} else {
 				const struct aa_reference_cache_result *v = &result->reference.cache;
 				/* an entry whose inputs changed since (the scene's files) has another key now */
-				outcome = v->mismatched ? "differs" : v->verified ? "identical" : "skipped";
-				if (!v->verified)
-					snprintf(why, sizeof why, "its inputs changed since it was stored (another key now)");
+				const bool same_key = v->verified && strcmp(v->verified_key, keys[i]) == 0;
+				outcome = !same_key ? "skipped" : v->mismatched ? "differs" : "identical";
+				if (!same_key)
+					snprintf(why, sizeof why, "what decides its pixels changed since it was stored "
+						 "(scene files, code, device or driver: another key now)");
 				else if (v->mismatched)
 					snprintf(why, sizeof why, "%s", v->warning_count ? v->warnings[0] : "");
 				aa_job_result_free(result);

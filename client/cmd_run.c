@@ -356,6 +356,9 @@ int cmd_run(int argc, char **argv)
 		goto out;
 	}
 	status = AA_EXIT_OK;
+	for (int i = 0; i < result->case_count; i++) /* e.g. an entry that failed its check, rendered again */
+		for (int w = 0; w < result->cases[i]->reference.cache.warning_count; w++)
+			fprintf(stderr, "aalab run: warning: %s\n", result->cases[i]->reference.cache.warnings[w]);
 	if (shard_text ? aa_shard_results_write(result, &whole, shard_index, shard_count, od.work, &err)
 		       : aa_suite_results_write(result, od.work, &err)) {
 		fprintf(stderr, "aalab run: %s\n", err.message);

@@ -26,6 +26,17 @@ void aa_print_suite_table(json_t *results, FILE *out)
 		json_array_size(json_object_get(results, "cases")));
 	json_object_foreach(labels, key, v)
 		fprintf(out, ", %s=%s", key, json_string_value(v));
+	/* references from the store, over every case's frames */
+	long hits = 0, frames = 0;
+	bool cached = false;
+	json_array_foreach(json_object_get(results, "cases"), i, c) {
+		json_t *ref = json_object_get(c, "reference"), *cache = json_object_get(ref, "cache");
+		cached |= json_is_object(cache);
+		hits += (long)json_integer_value(json_object_get(cache, "hits"));
+		frames += (long)json_array_size(json_object_get(ref, "per_frame"));
+	}
+	if (cached)
+		fprintf(out, ", references from the cache: %ld of %ld frames", hits, frames);
 	fprintf(out, ", %s\n\n", json_string_value(json_object_get(json_object_get(results, "device"), "name")) ?
 				    json_string_value(json_object_get(json_object_get(results, "device"), "name")) : "");
 	/* the method column fits the longest label, so parameters do not push the columns */

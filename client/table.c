@@ -18,8 +18,22 @@ static void format_psnr(double psnr, bool identical, char *out, size_t size)
 		snprintf(out, size, "%.2f", psnr);
 }
 
+/* ", from the cache: 28 of 30 frames" when the run had a store (the frames it did not render). */
+static void cache_text(const struct aa_job_result *r, char *out, size_t size)
+{
+	const struct aa_reference_cache_result *c = &r->reference.cache;
+	out[0] = 0;
+	if (!c->used)
+		return;
+	int n = snprintf(out, size, ", from the cache: %d of %d frames", c->hits, r->reference.frame_count);
+	if (c->continued && n > 0 && (size_t)n < size)
+		snprintf(out + n, size - (size_t)n, " (%d went on from a stored sum)", c->continued);
+}
+
 void aa_print_table(const struct aa_job_result *r, FILE *out)
 {
+	char cached[96];
+	cache_text(r, cached, sizeof cached);
 	double conv_mse = 0;
 	for (int f = 0; f < r->reference.frame_count; f++)
 		conv_mse += r->reference.frames[f].convergence_mse;
@@ -38,17 +52,17 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		}
 		char reached[96];
 		snprintf(reached, sizeof reached, lo == hi ? "%d samples" : "%d-%d samples per frame", lo, hi);
-		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s (target %.1f dB, cap %d; "
+		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s%s (target %.1f dB, cap %d; "
 			"convergence N/2 vs N: %s dB", r->scene_name, r->spec.path, r->spec.width, r->spec.height,
-			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, r->reference.target_psnr,
+			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, cached, r->reference.target_psnr,
 			r->reference.samples, conv);
 		if (capped)
 			fprintf(out, "; %d frame%s stopped at the cap under the target", capped, capped == 1 ? "" : "s");
 		fprintf(out, "), %s\n\n", r->device_name);
 	} else {
-		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples (convergence %d vs %d: "
+		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples%s (convergence %d vs %d: "
 			"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
-			r->spec.frames == 1 ? "" : "s", r->reference.samples, r->reference.samples / 2,
+			r->spec.frames == 1 ? "" : "s", r->reference.samples, cached, r->reference.samples / 2,
 			r->reference.samples, conv, r->device_name);
 	}
 	bool sequence = r->spec.frames > 1;

@@ -149,6 +149,21 @@ static void place_shard(struct aa_job_result *w, const struct aa_job_result *s, 
 	const int repeat = w->spec.timing_repeat;
 	for (int k = 0; k < s->reference.frame_count; k++)
 		w->reference.frames[begin + k] = s->reference.frames[k];
+	/* the store's counts add up over the shards (a shard without a store leaves them as they are) */
+	struct aa_reference_cache_result *wc = &w->reference.cache;
+	const struct aa_reference_cache_result *sc = &s->reference.cache;
+	if (sc->used) {
+		wc->used = true;
+		wc->hits += sc->hits;
+		wc->misses += sc->misses;
+		wc->continued += sc->continued;
+		wc->unkeyed += sc->unkeyed;
+		wc->bytes_read += sc->bytes_read;
+		wc->bytes_written += sc->bytes_written;
+		wc->discarded += sc->discarded;
+		for (int i = 0; i < sc->warning_count && wc->warning_count < AA_REFERENCE_CACHE_WARNINGS; i++)
+			memcpy(wc->warnings[wc->warning_count++], sc->warnings[i], sizeof wc->warnings[0]);
+	}
 	for (int i = 0; i < w->method_count; i++) {
 		const struct aa_method_result *sm = &s->methods[i];
 		struct aa_method_result *wm = &w->methods[i];

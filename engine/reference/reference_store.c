@@ -111,6 +111,7 @@ static void compare(struct aa_reference_store *s, const struct aa_reference_key 
 	for (int i = 0; same && i < e.plane_count; i++)
 		same = e.samples[i] == now->samples[i] && memcmp(e.planes[i], now->planes[i], bytes) == 0;
 	s->result->verified++;
+	memcpy(s->result->verified_key, key->hex, sizeof s->result->verified_key);
 	if (!same) {
 		s->result->mismatched++;
 		char message[256];

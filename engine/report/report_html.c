@@ -524,6 +524,10 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 	} else {
 		snprintf(v, sizeof v, "%d samples", ref->samples);
 	}
+	if (ref->cache.used) { /* "64 samples, from the cache: 30 of 30 frames" */
+		const size_t len = strlen(v);
+		snprintf(v + len, sizeof v - len, ", from the cache: %d of %d frames", ref->cache.hits, ref->frame_count);
+	}
 	int n = snprintf(d, sizeof d, "%s \xc2\xb7 convergence PSNR ", *ref->pattern ? ref->pattern : "reference");
 	if (identical)
 		n += snprintf(d + n, sizeof d - (size_t)n, "identical");

@@ -381,6 +381,25 @@ static json_t *method_json(struct builder *b, const struct aa_job_result *r, con
 	return obj;
 }
 
+/* What the reference store did (null: the run had none). */
+static json_t *reference_cache_json(struct builder *b, const struct aa_reference_cache_result *c)
+{
+	if (!c->used)
+		return json_null();
+	json_t *obj = json_object(), *warnings = json_array();
+	put(b, obj, "hits", json_integer(c->hits));
+	put(b, obj, "misses", json_integer(c->misses));
+	put(b, obj, "continued", json_integer(c->continued));
+	put(b, obj, "unkeyed", json_integer(c->unkeyed));
+	put(b, obj, "bytes_read", u64(c->bytes_read));
+	put(b, obj, "bytes_written", u64(c->bytes_written));
+	put(b, obj, "discarded", json_integer(c->discarded));
+	for (int i = 0; i < c->warning_count && i < AA_REFERENCE_CACHE_WARNINGS; i++)
+		push(b, warnings, str(c->warnings[i]));
+	put(b, obj, "warnings", warnings);
+	return obj;
+}
+
 static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 {
 	const struct aa_reference_result *ref = &r->reference;
@@ -417,6 +436,8 @@ static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 		put(b, fo, "nonfinite", json_integer(f->nonfinite));
 		put(b, fo, "reused", json_boolean(f->reused));
 		put(b, fo, "samples", json_integer(f->samples));
+		if (f->cache[0])
+			put(b, fo, "cache", str(f->cache));
 		put(b, fo, "image", image_path(r, "frames", "reference", i));
 		push(b, per_frame, fo);
 	}
@@ -435,6 +456,7 @@ static json_t *reference_json(struct builder *b, const struct aa_job_result *r)
 	put_psnr(b, obj, "convergence_psnr", "convergence_identical",
 		 mse_mean > 0 ? aa_psnr_from_mse(mse_mean, 255.0) : NAN, mse_n > 0 && mse_mean == 0);
 	put(b, obj, "convergence_mse", num(mse_mean));
+	put(b, obj, "cache", reference_cache_json(b, &ref->cache));
 	put(b, obj, "per_frame", per_frame);
 	free(v);
 	return obj;

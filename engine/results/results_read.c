@@ -216,8 +216,27 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 		f->nonfinite = (long)json_integer_value(json_object_get(item, "nonfinite"));
 		f->reused = json_is_true(json_object_get(item, "reused"));
 		f->samples = (int)json_integer_value(json_object_get(item, "samples"));
+		jstr(item, "cache", f->cache, sizeof f->cache);
 	}
 	out->reference.frame_count = spec->frames;
+	const json_t *cache = json_object_get(ref, "cache");
+	if (json_is_object(cache)) {
+		struct aa_reference_cache_result *c = &out->reference.cache;
+		c->used = true;
+		c->hits = (int)json_integer_value(json_object_get(cache, "hits"));
+		c->misses = (int)json_integer_value(json_object_get(cache, "misses"));
+		c->continued = (int)json_integer_value(json_object_get(cache, "continued"));
+		c->unkeyed = (int)json_integer_value(json_object_get(cache, "unkeyed"));
+		c->bytes_read = (uint64_t)json_integer_value(json_object_get(cache, "bytes_read"));
+		c->bytes_written = (uint64_t)json_integer_value(json_object_get(cache, "bytes_written"));
+		c->discarded = (int)json_integer_value(json_object_get(cache, "discarded"));
+		const json_t *w;
+		size_t k;
+		json_array_foreach(json_object_get(cache, "warnings"), k, w)
+			if (c->warning_count < AA_REFERENCE_CACHE_WARNINGS)
+				snprintf(c->warnings[c->warning_count++], sizeof c->warnings[0], "%s",
+					 json_string_value(w) ? json_string_value(w) : "");
+	}
 
 	if (need_array(doc, "methods", "methods", &v, err))
 		return -1;

@@ -194,6 +194,7 @@ struct aa_reference_cache_result {
 	int discarded;             /* entries that failed their check: removed and rendered again */
 	int verified, mismatched;  /* verify mode (aalab cache verify): entries compared bit for bit, and those
 				    * that differed from the render */
+	char verified_key[65];     /* verify mode: the key of the last entry compared (hex) */
 	int warning_count;         /* the first few messages, e.g. of a discarded entry */
 	char warnings[AA_REFERENCE_CACHE_WARNINGS][256];
 };
