@@ -123,8 +123,9 @@ int aa_reference_cache_open(const char *dir, uint64_t max_bytes, struct aa_refer
 		return aa_error_set(err, AA_ERR_INVALID, "reference-cache", "an empty folder name");
 	if (strlen(dir) > 1900)
 		return aa_error_set(err, AA_ERR_INVALID, "reference-cache", "the folder name is over 1900 bytes");
-	if (aa_file_make_dirs(dir, err))
-		return aa_error_set(err, AA_ERR_IO, "reference-cache", "%s", err->message);
+	struct aa_error made = {0};
+	if (aa_file_make_dirs(dir, &made))
+		return aa_error_set(err, AA_ERR_IO, "reference-cache", "%s", made.message);
 	if (access(dir, R_OK | W_OK | X_OK) != 0)
 		return aa_error_set(err, AA_ERR_IO, "reference-cache", "cannot write into %s: %s", dir, strerror(errno));
 	struct aa_reference_cache *c = calloc(1, sizeof *c);

@@ -24,7 +24,9 @@ UNIT_TESTS = \
 	tests/unit/test_report_viewer \
 	tests/unit/test_verdicts \
 	tests/unit/test_farm \
-	tests/unit/test_shard
+	tests/unit/test_shard \
+	tests/unit/test_reference_key \
+	tests/unit/test_reference_cache
 # what each pins:
 #  math, draw_order: matrices and the order transparent draws sort in
 #  metrics, flip, fourier: PSNR/SSIM on images with known answers, FLIP and the Fourier bands
@@ -39,5 +41,7 @@ UNIT_TESTS = \
 #  debug_targets_count: the non-finite count on hand-made half, float and depth texels
 #  results, report_viewer: results.json, the warnings panel, the viewer's data, worst regions, EXR frames
 #  verdicts, farm, shard: hard cases' verdicts, suites/labels/baselines/compare, shards and merging
+#  reference_key, reference_cache: each part of a reference's key changes it; the store's entries (damaged
+#    ones found and removed, writers of one key at once, least recently used out past the size)
 check_PROGRAMS += $(UNIT_TESTS) tests/tools/metrics_tool
 TESTS += $(UNIT_TESTS)
