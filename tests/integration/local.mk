@@ -16,7 +16,8 @@ GPU_TESTS = \
 	tests/integration/test_debug_targets \
 	tests/integration/test_assets \
 	tests/integration/test_golden \
-	tests/integration/test_temporal_long
+	tests/integration/test_temporal_long \
+	tests/integration/test_reference_store
 # what each pins:
 #  engine, analytic_edges: jobs end to end; methods against exact coverage of analytic edges
 #  msaa, alpha_rule: MSAA's shading point on hardware and virtual samples; every method family's alpha rule
@@ -29,6 +30,8 @@ GPU_TESTS = \
 #  debug_targets: a NaN held in an intermediate is caught only with the option on
 #  assets: each material feature against known values and a golden image (tests/assets/golden/,
 #    rewritten with AALAB_UPDATE_GOLDEN=1), skinned velocity, every method on every feature
+#  reference_store: a run from the store has the metrics of one without it, to the byte; one byte of a
+#    texture, the size, N, the driver version or a shader's SPIR-V each make it miss; auto goes on
 #  golden, temporal_long: every method on every scene pinned in tests/golden/quality.tsv; the temporal
 #    methods over 128 still frames, a pan and a cut (tests/golden/temporal.tsv)
 GOLDEN_FIXTURE = tests/integration/golden.h tests/integration/golden.c
@@ -49,6 +52,7 @@ tests_integration_test_user_methods_SOURCES = tests/integration/test_user_method
 tests_integration_test_timing_SOURCES = tests/integration/test_timing.c $(GPU_TEST_FIXTURE)
 tests_integration_test_debug_targets_SOURCES = tests/integration/test_debug_targets.c $(GPU_TEST_FIXTURE)
 tests_integration_test_assets_SOURCES = tests/integration/test_assets.c $(GPU_TEST_FIXTURE)
+tests_integration_test_reference_store_SOURCES = tests/integration/test_reference_store.c $(GPU_TEST_FIXTURE)
 tests_integration_test_golden_SOURCES = tests/integration/test_golden.c $(GPU_TEST_FIXTURE) $(GOLDEN_FIXTURE)
 tests_integration_test_temporal_long_SOURCES = tests/integration/test_temporal_long.c $(GPU_TEST_FIXTURE) \
 	$(GOLDEN_FIXTURE)
