@@ -391,6 +391,11 @@ int main(int argc, char **argv)
 		       "the worker process gets the configuration's paths");
 	memcpy(store->state_dir, d->cfg.state_dir, sizeof store->state_dir);
 	memcpy(store->device, d->cfg.device, sizeof store->device);
+	char references[1100];
+	config_reference_cache_dir(&d->cfg, references, sizeof references);
+	snprintf(store->reference_cache, sizeof store->reference_cache, "%s", references);
+	snprintf(store->reference_cache_bytes, sizeof store->reference_cache_bytes, "%llu",
+		 (unsigned long long)d->cfg.reference_cache_bytes);
 	struct aa_error aerr = {0};
 	struct aa_engine_options eo = {.device = d->cfg.device[0] ? d->cfg.device : NULL};
 	if (open_listeners(d, argc, argv, err, sizeof err)) {
@@ -412,6 +417,11 @@ int main(int argc, char **argv)
 		/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
 		 * engine belongs to the worker thread from here on) */
 		aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
+		if (references[0] &&
+		    aa_engine_set_reference_cache(store->engine, references, d->cfg.reference_cache_bytes, &aerr)) {
+			fprintf(stderr, "aalabd: %s: %s\n", aerr.path, aerr.message);
+			goto out;
+		}
 	}
 	if (worker_start(store)) {
 		fprintf(stderr, "aalabd: cannot start the GPU worker thread\n");

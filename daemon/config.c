@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "daemon.h"
+#include "reference/reference_cache.h"
 
 void config_defaults(struct config *c)
 {
@@ -38,6 +39,7 @@ void config_defaults(struct config *c)
 	c->render_nice = 5;
 	c->retention_bytes = 10ull << 30;
 	c->scene_cache_bytes = 512ull << 20;
+	c->reference_cache_bytes = AA_REFERENCE_CACHE_DEFAULT_BYTES;
 	c->drain_timeout_s = 60;
 	c->job_time_limit_s = 3600;
 }
@@ -69,6 +71,8 @@ static const struct key keys[] = {
 	NUM("max-job-interruptions", K_INT, max_job_interruptions, 0, 1000),
 	NUM("retention-bytes", K_U64, retention_bytes, 0, 1e18),
 	NUM("scene-cache-bytes", K_U64, scene_cache_bytes, 0, 1e18),
+	STR("reference-cache", reference_cache),
+	NUM("reference-cache-size", K_U64, reference_cache_bytes, AA_REFERENCE_CACHE_MIN_BYTES, 1e18),
 	NUM("drain-timeout", K_INT, drain_timeout_s, 0, 86400),
 	NUM("verbose", K_INT, verbose, 0, 3),
 	{"allow-user-methods", K_BOOL, offsetof(struct config, allow_user_methods), 0, 0, 0},
@@ -181,6 +185,16 @@ int config_load(struct config *c, const char *path, char *err, size_t err_size)
 	return rc;
 }
 
+void config_reference_cache_dir(const struct config *c, char *out, size_t size)
+{
+	if (!strcmp(c->reference_cache, "off"))
+		snprintf(out, size, "%s", "");
+	else if (c->reference_cache[0])
+		snprintf(out, size, "%s", c->reference_cache);
+	else
+		snprintf(out, size, "%s/references", c->state_dir);
+}
+
 void config_apply_reload(struct config *to, const struct config *from)
 {
 	/* listeners, state directory and device stay as they are until a restart */
@@ -191,6 +205,9 @@ void config_apply_reload(struct config *to, const struct config *from)
 	memcpy(to->tcp, keep.tcp, sizeof to->tcp);
 	memcpy(to->http, keep.http, sizeof to->http);
 	memcpy(to->device, keep.device, sizeof to->device);
+	/* the store of references is opened at start-up */
+	memcpy(to->reference_cache, keep.reference_cache, sizeof to->reference_cache);
+	to->reference_cache_bytes = keep.reference_cache_bytes;
 	memcpy(to->config_file, keep.config_file, sizeof to->config_file);
 	/* whether GPU work runs in a worker process is decided at start-up */
 	to->allow_user_methods = keep.allow_user_methods;

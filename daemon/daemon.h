@@ -39,6 +39,8 @@ struct config {
 	int render_nice;            /* nice levels the rendering threads run below the protocol loop */
 	uint64_t retention_bytes;   /* bytes of finished jobs kept */
 	uint64_t scene_cache_bytes;
+	char reference_cache[1024];  /* the store of references: a folder, "off", or "" for STATE_DIR/references */
+	uint64_t reference_cache_bytes;
 	int drain_timeout_s;        /* SIGTERM: how long the running job may take to finish */
 	bool allow_user_methods;    /* jobs may bring their own shaders; GPU work runs in a worker process */
 	int job_time_limit_s;       /* the worker process is killed when a job runs longer (0: no limit) */
@@ -49,6 +51,8 @@ void config_defaults(struct config *c);
 /* Reads "key = value" lines; errors name the file, the line and the key. */
 int config_load(struct config *c, const char *path, char *err, size_t err_size);
 /* Applies the reloadable settings (limits, timeouts, retention, cache budget) of `from` to `to`. */
+/* The folder of the store of references the configuration names ("" when it is off). */
+void config_reference_cache_dir(const struct config *c, char *out, size_t size);
 void config_apply_reload(struct config *to, const struct config *from);
 int config_set(struct config *c, const char *name, const char *value, char *err, size_t err_size);
 bool config_has_key(const char *name); /* a key of the file, and so an option --KEY VALUE */

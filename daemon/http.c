@@ -130,6 +130,21 @@ static void metrics(struct daemon *d, struct response *r)
 		"# TYPE aalab_gpu_scene_cache_bytes gauge\naalab_gpu_scene_cache_bytes %llu\n",
 		(unsigned long long)s->gpu_scenes.hits, (unsigned long long)s->gpu_scenes.misses,
 		(unsigned long long)s->gpu_scenes.bytes);
+	const struct aa_reference_cache_stats rc = s->references;
+	fprintf(f, "# HELP aalab_reference_cache_hits_total Reference frames (or auto levels) read from the store.\n"
+		"# TYPE aalab_reference_cache_hits_total counter\naalab_reference_cache_hits_total %llu\n"
+		"# HELP aalab_reference_cache_misses_total Reference lookups the store could not serve: rendered.\n"
+		"# TYPE aalab_reference_cache_misses_total counter\naalab_reference_cache_misses_total %llu\n"
+		"# HELP aalab_reference_cache_read_bytes_total Bytes of entries read from the store.\n"
+		"# TYPE aalab_reference_cache_read_bytes_total counter\naalab_reference_cache_read_bytes_total %llu\n"
+		"# HELP aalab_reference_cache_written_bytes_total Bytes of entries written to the store.\n"
+		"# TYPE aalab_reference_cache_written_bytes_total counter\naalab_reference_cache_written_bytes_total %llu\n"
+		"# HELP aalab_reference_cache_evictions_total Entries removed to keep the store under its size.\n"
+		"# TYPE aalab_reference_cache_evictions_total counter\naalab_reference_cache_evictions_total %llu\n"
+		"# HELP aalab_reference_cache_discarded_total Entries that failed their check, removed and rendered again.\n"
+		"# TYPE aalab_reference_cache_discarded_total counter\naalab_reference_cache_discarded_total %llu\n",
+		(unsigned long long)rc.hits, (unsigned long long)rc.misses, (unsigned long long)rc.bytes_read,
+		(unsigned long long)rc.bytes_written, (unsigned long long)rc.evictions, (unsigned long long)rc.discarded);
 	pthread_mutex_unlock(&s->lock);
 	fprintf(f, "# HELP aalab_scene_cache_hits_total Scene lookups served from the cache.\n"
 		"# TYPE aalab_scene_cache_hits_total counter\naalab_scene_cache_hits_total %llu\n"

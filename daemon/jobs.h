@@ -80,6 +80,10 @@ struct store {
 	struct worker_process *process;     /* the worker thread's */
 	int render_nice_value;              /* render-nice, as a nice value: the worker thread's and process's */
 	struct scene_cache_stats process_scenes; /* the process's scene cache, after its last job */
+	/* the store of references (reference-cache): its folder ("" off) and size for the process's command
+	 * line, and its counts after the last job (the process's since it started) */
+	char reference_cache[1100], reference_cache_bytes[32];
+	struct aa_reference_cache_stats references;
 };
 
 const char *job_state_name(enum job_state s);

@@ -434,6 +434,7 @@ static void run_job(struct store *s, struct job *job)
 	}
 	pthread_mutex_lock(&s->lock);
 	s->gpu_scenes = aa_engine_upload_stats(s->engine);
+	aa_engine_reference_cache_stats(s->engine, &s->references);
 	pthread_mutex_unlock(&s->lock);
 	worker_run_end(&run, &out);
 }

@@ -213,11 +213,16 @@ static void child_run(struct child *c, struct aa_engine *engine, struct scene_ca
 	}
 	json_decref(files);
 	struct aa_upload_stats up = aa_engine_upload_stats(engine);
-	json_t *done = json_pack("{ss si s{ss ss ss} si sf s{sI sI sI} so}", "type", "done", "rc", out.rc, "error",
-				 "code", aa_error_code_name(out.err.code), "message", out.err.message, "path",
-				 out.err.path, "failed_writes", out.failed_writes, "busy", out.busy, "gpu_scenes",
+	struct aa_reference_cache_stats refs;
+	aa_engine_reference_cache_stats(engine, &refs);
+	json_t *done = json_pack("{ss si s{ss ss ss} si sf s{sI sI sI} so s{sI sI sI sI sI sI}}", "type", "done", "rc",
+				 out.rc, "error", "code", aa_error_code_name(out.err.code), "message", out.err.message,
+				 "path", out.err.path, "failed_writes", out.failed_writes, "busy", out.busy, "gpu_scenes",
 				 "hits", (json_int_t)up.hits, "misses", (json_int_t)up.misses, "bytes",
-				 (json_int_t)up.bytes, "scene_cache", scene_stats_json(scenes));
+				 (json_int_t)up.bytes, "scene_cache", scene_stats_json(scenes), "references", "hits",
+				 (json_int_t)refs.hits, "misses", (json_int_t)refs.misses, "bytes_read",
+				 (json_int_t)refs.bytes_read, "bytes_written", (json_int_t)refs.bytes_written, "evictions",
+				 (json_int_t)refs.evictions, "discarded", (json_int_t)refs.discarded);
 	if (out.summary)
 		json_object_set_new(done, "summary", out.summary);
 	if (!c->parent_gone && send_json(c->io.fd, done))
@@ -252,6 +257,14 @@ int worker_process_main(int argc, char **argv)
 		return 1;
 	}
 	aa_engine_set_upload_budget(engine, cfg.scene_cache_bytes);
+	char references[1100];
+	config_reference_cache_dir(&cfg, references, sizeof references);
+	if (references[0] && aa_engine_set_reference_cache(engine, references, cfg.reference_cache_bytes, &aerr)) {
+		send_json(c.io.fd, json_pack("{ss ss}", "type", "failed", "message", aerr.message));
+		aa_engine_destroy(engine);
+		close(c.io.fd);
+		return 1;
+	}
 	struct scene_cache *scenes = scene_cache_create(cfg.scene_cache_bytes);
 	/* compiled user shaders are kept with the daemon's state, not in a user's home */
 	char cache[1100];
@@ -326,7 +339,9 @@ static int process_spawn(struct store *s, char *err, size_t err_size)
 	snprintf(budget, sizeof budget, "%llu", (unsigned long long)s->process_scene_budget);
 	/* everything the child needs is made before fork: after it, only system calls until exec */
 	char *argv[] = {"/proc/self/exe", "--worker-process", "3", "--state-dir", s->state_dir,
-			"--scene-cache-bytes", budget, s->device[0] ? "--device" : NULL, s->device, NULL};
+			"--scene-cache-bytes", budget, "--reference-cache", s->reference_cache[0] ? s->reference_cache : "off",
+			"--reference-cache-size", s->reference_cache_bytes, s->device[0] ? "--device" : NULL, s->device,
+			NULL};
 	const pid_t parent = getpid();
 	double t0 = now_ms();
 	pid_t pid = fork();
@@ -420,7 +435,14 @@ static void apply_done(struct store *s, json_t *msg, struct worker_outcome *out)
 	if (out->rc == 0 && !out->summary)
 		out->summary = json_array();
 	json_t *g = json_object_get(msg, "gpu_scenes"), *c = json_object_get(msg, "scene_cache");
+	json_t *r = json_object_get(msg, "references");
 	pthread_mutex_lock(&s->lock);
+	s->references.hits = (uint64_t)json_integer_value(json_object_get(r, "hits"));
+	s->references.misses = (uint64_t)json_integer_value(json_object_get(r, "misses"));
+	s->references.bytes_read = (uint64_t)json_integer_value(json_object_get(r, "bytes_read"));
+	s->references.bytes_written = (uint64_t)json_integer_value(json_object_get(r, "bytes_written"));
+	s->references.evictions = (uint64_t)json_integer_value(json_object_get(r, "evictions"));
+	s->references.discarded = (uint64_t)json_integer_value(json_object_get(r, "discarded"));
 	s->gpu_scenes.hits = (uint64_t)json_integer_value(json_object_get(g, "hits"));
 	s->gpu_scenes.misses = (uint64_t)json_integer_value(json_object_get(g, "misses"));
 	s->gpu_scenes.bytes = (uint64_t)json_integer_value(json_object_get(g, "bytes"));

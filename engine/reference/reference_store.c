@@ -76,7 +76,9 @@ static void explain(struct aa_reference_store *s, const struct aa_reference_key 
 static int lookup(struct aa_reference_store *s, const struct aa_reference_key *key, struct aa_reference_entry *e)
 {
 	char warning[256] = "";
+	const uint64_t before = aa_reference_cache_stats(s->cache).bytes_read;
 	const int rc = aa_reference_cache_get(s->cache, key->sha256, e, warning, sizeof warning);
+	s->result->bytes_read += aa_reference_cache_stats(s->cache).bytes_read - before;
 	if (rc < 0) {
 		s->result->discarded++;
 		warn(s, warning);
@@ -126,7 +128,6 @@ static void read_cost(struct aa_reference_store *s, const struct aa_reference_en
 {
 	*gpu_ms = e->gpu_ms;
 	*cpu_ms = e->cpu_ms;
-	s->result->bytes_read += (uint64_t)e->width * e->height * 16 * e->plane_count;
 }
 
 int aa_reference_store_load(struct aa_reference_store *s, const struct aa_reference *ref, struct aa_image_rgbaf *full,
