@@ -42,7 +42,8 @@ static const struct aa_cmd_entry commands[] = {
 	 "join the result folders of a job's shards into the results of the whole job", cmd_merge, aa_merge_help},
 	{"cache", "cache stats|clear|verify [--sample N] [--reference-cache DIR] [--json]",
 	 "show, clear or verify the store of reference frames runs share", cmd_cache, aa_cache_help},
-	{"slurm", "slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G] [--time T] [--submit]",
+	{"slurm", "slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G] [--time T] "
+		  "[--reference-cache DIR|off] [--submit]",
 	 "write (and submit) a Slurm array job of a job's shards and the job that merges them", cmd_slurm, aa_slurm_help},
 };
 

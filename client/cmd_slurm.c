@@ -15,10 +15,11 @@
 #include "client.h"
 #include "run/shard.h"
 #include "run/job_spec.h"
+#include "util/file_io.h"
 
 const char aa_slurm_help[] =
 	"usage: aalab slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G]\n"
-	"                   [--time T] [--aalab PATH] [--submit] [--force]\n"
+	"                   [--time T] [--aalab PATH] [--reference-cache DIR|off] [--submit] [--force]\n"
 	"\n"
 	"Splits the job into N shards of contiguous frames (a suite: of whole cases) and writes, in DIR:\n"
 	"  job.json        the job, in canonical form\n"
@@ -34,6 +35,10 @@ const char aa_slurm_help[] =
 	"  --gres G          #SBATCH --gres of the shards, e.g. gpu:1 (one GPU per shard)\n"
 	"  --time T          #SBATCH --time of both scripts, e.g. 30:00\n"
 	"  --aalab PATH      the aalab the nodes run (default: this one, by absolute path)\n"
+	"  --reference-cache DIR|off  the store of reference frames every shard reads and fills (default: this\n"
+	"                    user's, $XDG_CACHE_HOME/aalab/references or ~/.cache/aalab/references): it must\n"
+	"                    be on storage every node sees, so that no shard renders a reference another one,\n"
+	"                    or an earlier job, rendered\n"
 	"  --submit          run sbatch and print the job ids\n"
 	"  --force           write the scripts into an earlier farm folder (its shards stay; each task\n"
 	"                    replaces its own, and merge checks that every shard is of this job)\n"
@@ -95,6 +100,7 @@ static long sbatch(const char *const *args)
 
 struct slurm_options {
 	const char *dir, *aalab, *partition, *gres, *time;
+	char references[PATH_MAX];  /* the store of references every shard reads and fills, or "off" */
 	int shards;
 	char hash[80];
 	char what[64];             /* "24 frames, warm-up 32" or "6 cases" */
@@ -128,7 +134,7 @@ static char *shards_script(const struct slurm_options *so)
 	/* without --quiet: the shard's log (logs/shard-I.log) shows its progress, a line per tenth */
 	fprintf(o, "set -eu\n"
 		"exec '%s' run '%s/job.json' --shard \"$SLURM_ARRAY_TASK_ID/%d\" --out \"%s/shards/$SLURM_ARRAY_TASK_ID\" \\\n"
-		"\t--force --local\n", so->aalab, so->dir, so->shards, so->dir);
+		"\t--force --local --reference-cache '%s'\n", so->aalab, so->dir, so->shards, so->dir, so->references);
 	fclose(o);
 	return text;
 }
@@ -162,16 +168,17 @@ static char *merge_script(const struct slurm_options *so)
 int cmd_slurm(int argc, char **argv)
 {
 	enum { OPT_SHARDS = 256, OPT_OUT, OPT_PARTITION, OPT_GRES, OPT_TIME, OPT_AALAB, OPT_SUBMIT, OPT_FORCE,
-	       OPT_HELP };
+	       OPT_HELP, OPT_REFERENCE_CACHE };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"shards", required_argument, 0, OPT_SHARDS}, {"out", required_argument, 0, OPT_OUT},
 		{"partition", required_argument, 0, OPT_PARTITION}, {"gres", required_argument, 0, OPT_GRES},
 		{"time", required_argument, 0, OPT_TIME}, {"aalab", required_argument, 0, OPT_AALAB},
 		{"submit", no_argument, 0, OPT_SUBMIT}, {"force", no_argument, 0, OPT_FORCE},
-		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+		{"help", no_argument, 0, OPT_HELP}, {"reference-cache", required_argument, 0, OPT_REFERENCE_CACHE},
+		{0, 0, 0, 0},
 	};
 	struct slurm_options so = {0};
-	const char *out = NULL, *shards_text = NULL;
+	const char *out = NULL, *shards_text = NULL, *references = NULL;
 	bool submit = false, force = false;
 	json_t *overrides = json_object(), *job = NULL;
 	int status = AA_EXIT_USAGE, c, idx;
@@ -190,6 +197,7 @@ int cmd_slurm(int argc, char **argv)
 		case OPT_AALAB: so.aalab = optarg; break;
 		case OPT_SUBMIT: submit = true; break;
 		case OPT_FORCE: force = true; break;
+		case OPT_REFERENCE_CACHE: references = optarg; break;
 		case OPT_HELP: fputs(aa_slurm_help, stdout); status = AA_EXIT_OK; goto done;
 		default: fputs(aa_slurm_help, stderr); goto done;
 		}
@@ -256,6 +264,20 @@ int cmd_slurm(int argc, char **argv)
 		goto done;
 	}
 	so.dir = dir;
+	/* one store for every shard, by absolute path (made here, so that the path is known to exist) */
+	char store[PATH_MAX];
+	if (aa_reference_cache_location(references, store, sizeof store))
+		goto done;
+	snprintf(so.references, sizeof so.references, "off");
+	if (store[0]) {
+		struct aa_error serr = {0};
+		if (aa_file_make_dirs(store, &serr) || !realpath(store, so.references)) {
+			fprintf(stderr, "aalab slurm: --reference-cache: %s\n", serr.message[0] ? serr.message : strerror(errno));
+			goto done;
+		}
+		if (check_word("reference-cache", so.references))
+			goto done;
+	}
 	if (!force) {
 		snprintf(path, sizeof path, "%s/job.json", dir);
 		if (access(path, F_OK) == 0) {

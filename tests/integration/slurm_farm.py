@@ -4,7 +4,9 @@ with a generated slurm.conf, tests/integration/slurm_cluster.py) runs a 4-shard 
 `aalab slurm --submit`. One shard's task fails (its output folder is taken by a file), so Slurm cancels
 the merge job that depended on every shard (afterok); `aalab merge` names the missing frames and exits 2;
 the shard is submitted again with the merge after it, and the merged results equal an unsharded run's
-(none and fxaa to the last digit, taa within the tolerance of docs/farm.md). Every daemon is stopped by
+(none and fxaa to the last digit, taa within the tolerance of docs/farm.md). Every shard shares one store
+of references: the same job submitted again renders no reference (the store's counts show only hits,
+and the merged results say 24 of 24 frames came from it, with the same metrics). Every daemon is stopped by
 its PID, also when a check fails. Skips (exit 77) where Slurm cannot run (not root, not installed),
 except when AALAB_REQUIRE_SLURM is set, as .ci/run does: there it fails."""
 import json
@@ -45,6 +47,36 @@ def aalab(*args, env=None):
     return subprocess.run([AALAB] + list(args), capture_output=True, text=True, env=env, timeout=600)
 
 
+def stats(refs):
+    out = aalab("cache", "stats", "--json", "--reference-cache", refs)
+    return json.loads(out.stdout) if out.returncode == 0 else {}
+
+
+def resubmit(cluster, job, tmp, refs):
+    """The job again, into another farm folder, with the same store: every reference is a hit."""
+    before = stats(refs)
+    farm = os.path.join(tmp, "farm2")
+    sub = aalab("slurm", job, "--shards", "4", "--out", farm, "--time", "10:00", "--submit",
+                "--reference-cache", refs, env=cluster.env)
+    ids = [line.split()[3] for line in sub.stdout.splitlines() if line.startswith(("shards:", "merge:"))]
+    if not check(sub.returncode == 0 and len(ids) == 2, "submitted again: " + sub.stdout.strip() + sub.stderr):
+        return False
+    cluster.wait_jobs(ids, timeout=300)
+    after = stats(refs)
+    hits, misses = after.get("hits", 0) - before.get("hits", 0), after.get("misses", 0) - before.get("misses", 0)
+    check(hits == 24 and misses == 0, "the store's counts over the second submission: %d hits, %d misses" %
+          (hits, misses))
+    path = os.path.join(farm, "merged", "results.json")
+    if not check(os.path.exists(path), "the second submission merged"):
+        return False
+    with open(path) as f:
+        cache = json.load(f)["reference"]["cache"]
+    check(cache and cache["hits"] == 24 and cache["misses"] == 0, "merged reference.cache: %s" % cache)
+    fails = shard_check.compare(os.path.join(tmp, "farm", "merged"), os.path.join(farm, "merged"),
+                                ["none", "fxaa", "taa"], {})
+    return hits == 24 and misses == 0 and fails == 0
+
+
 def main():
     why = slurm_cluster.missing_tools()
     if why:
@@ -66,8 +98,9 @@ def main():
         os.makedirs(os.path.join(farm, "shards"))
         with open(os.path.join(farm, "shards", "2"), "w") as f:
             f.write("not a folder: shard 2's task fails\n")
+        refs = os.path.join(tmp, "references")  # the farm's shared store of references
         sub = aalab("slurm", job, "--shards", "4", "--out", farm, "--time", "10:00", "--submit", "--force",
-                    env=cluster.env)
+                    "--reference-cache", refs, env=cluster.env)
         ids = [line.split()[3] for line in sub.stdout.splitlines() if line.startswith(("shards:", "merge:"))]
         check(sub.returncode == 0 and len(ids) == 2,
               "aalab slurm --submit queues the array and the merge: " + sub.stdout.strip().replace("\n", " | ") +
@@ -107,6 +140,7 @@ def main():
             fails = shard_check.compare(os.path.join(tmp, "whole"), os.path.join(farm, "merged"), ["none", "fxaa"],
                                         {"taa": TAA_TOLERANCE})
             check(fails == 0, "the merged results are the unsharded run's")
+            check(resubmit(cluster, job, tmp, refs), "the same job submitted again renders no reference")
         pids = [p.pid for p in cluster.procs.values()]
     check(not any(os.path.exists("/proc/%d" % pid) for pid in pids), "every daemon stopped (PIDs %s)" % pids)
     print("%.1f s in all" % (time.time() - t0))
