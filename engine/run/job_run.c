@@ -1,5 +1,6 @@
 /* Runs a job: for every frame on the camera path, the reference, then every method, then metrics against
- * the reference, reported as events (docs/architecture.md, "One job"). */
+ * the reference, reported as events (docs/architecture.md, "One job"). The scoring of a frame and its
+ * events run beside the next frame's reference (run/frame_scoring.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,7 @@
 #include "reference/reference_store.h"
 #include "render/renderer.h"
 #include "methods/methods.h"
+#include "run/frame_scoring.h"
 
 static float half_to_float(uint16_t h)
 {
@@ -39,40 +41,6 @@ static float half_to_float(uint16_t h)
 	return f;
 }
 
-static long count_nonfinite(const struct aa_image_rgbaf *img)
-{
-	long n = 0;
-	size_t count = (size_t)img->width * img->height * 4;
-	for (size_t i = 0; i < count; i++)
-		n += !isfinite(img->pixels[i]);
-	return n;
-}
-
-/* Finite R, G or B values below -1/1024: negative light, which no display or later pass expects. */
-static long count_out_of_range(const struct aa_image_rgbaf *img)
-{
-	long n = 0;
-	size_t count = (size_t)img->width * img->height;
-	for (size_t i = 0; i < count; i++)
-		for (int c = 0; c < 3; c++)
-			n += img->pixels[i * 4 + c] < -1.0f / 1024.0f;
-	return n;
-}
-
-/* |test - ref| x 4 per channel, as seed 002 shows errors. */
-static void diff_image(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
-		       struct aa_image_rgba8 *out)
-{
-	size_t n = (size_t)ref->width * ref->height;
-	for (size_t i = 0; i < n; i++) {
-		for (int c = 0; c < 3; c++) {
-			int d = abs((int)test->pixels[i * 4 + c] - (int)ref->pixels[i * 4 + c]) * 4;
-			out->pixels[i * 4 + c] = (uint8_t)(d > 255 ? 255 : d);
-		}
-		out->pixels[i * 4 + 3] = 255;
-	}
-}
-
 struct job_state {
 	struct aa_engine *engine;
 	const struct aa_job_spec *spec;
@@ -87,9 +55,10 @@ struct job_state {
 	struct aa_method_state *twins[AA_MAX_METHODS];
 	struct aa_gpu_timer timer;
 	struct aa_gpu_buffer readback;
-	struct aa_image_rgbaf full, half, output;
-	struct aa_image_rgba8 ref8, half8, out8, diff8, flip8;
-	struct aa_image_rgba8 prev_ref8, prev_out8[AA_MAX_METHODS]; /* the previous frame, for flicker */
+	struct aa_image_rgbaf full, half;
+	struct aa_image_rgba8 ref8, half8;
+	struct aa_scoring *scoring;      /* scores each frame and emits its events beside the rendering */
+	struct aa_scoring_frame *scored; /* the frame being filled for it */
 	struct aa_job_result *result;
 	struct aa_debug_targets *debug_targets; /* job option debug_targets, else NULL */
 };
@@ -115,15 +84,8 @@ static void job_state_free(struct job_state *js)
 		aa_scene_free(js->scene);
 	aa_image_rgbaf_free(&js->full);
 	aa_image_rgbaf_free(&js->half);
-	aa_image_rgbaf_free(&js->output);
 	aa_image_rgba8_free(&js->ref8);
 	aa_image_rgba8_free(&js->half8);
-	aa_image_rgba8_free(&js->out8);
-	aa_image_rgba8_free(&js->diff8);
-	aa_image_rgba8_free(&js->flip8);
-	aa_image_rgba8_free(&js->prev_ref8);
-	for (int i = 0; i < AA_MAX_METHODS; i++)
-		aa_image_rgba8_free(&js->prev_out8[i]);
 }
 
 static int emit(aa_event_fn fn, void *user, struct aa_event *ev, struct aa_error *err)
@@ -238,14 +200,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 	}
 	int w = spec->width, h = spec->height;
 	if (aa_image_rgbaf_alloc(&js->full, w, h) || aa_image_rgbaf_alloc(&js->half, w, h) ||
-	    aa_image_rgbaf_alloc(&js->output, w, h) || aa_image_rgba8_alloc(&js->ref8, w, h) ||
-	    aa_image_rgba8_alloc(&js->half8, w, h) || aa_image_rgba8_alloc(&js->out8, w, h) ||
-	    aa_image_rgba8_alloc(&js->diff8, w, h) || aa_image_rgba8_alloc(&js->flip8, w, h) ||
-	    (spec->frames > 1 && aa_image_rgba8_alloc(&js->prev_ref8, w, h)))
+	    aa_image_rgba8_alloc(&js->ref8, w, h) || aa_image_rgba8_alloc(&js->half8, w, h))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
-	for (int i = 0; spec->frames > 1 && i < spec->method_count; i++)
-		if (aa_image_rgba8_alloc(&js->prev_out8[i], w, h))
-			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for %dx%d images", w, h);
 	return 0;
 }
 
@@ -253,8 +209,6 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, const
 			    struct aa_error *err)
 {
 	struct aa_reference_frame *rf = &js->result->reference.frames[ordinal];
-	if (js->prev_ref8.pixels)
-		memcpy(js->prev_ref8.pixels, js->ref8.pixels, (size_t)js->ref8.width * js->ref8.height * 4);
 	if (reuse) {
 		/* a held camera over a scene where nothing moves: every frame's reference is the first one */
 		*rf = js->result->reference.frames[0];
@@ -271,7 +225,7 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, const
 					     &js->half, &js->ref8, &js->half8, &rf->samples, &m, &rf->gpu_ms,
 					     &rf->cpu_ms, &js->store, err))
 			return -1;
-		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+		rf->nonfinite = aa_count_nonfinite(&js->full) + aa_count_nonfinite(&js->half);
 	} else {
 		/* the store's entry when it has one, else rendered and stored */
 		if (!aa_reference_store_load(&js->store, &js->reference, &js->full, &js->half, &rf->gpu_ms, &rf->cpu_ms)) {
@@ -281,7 +235,7 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, const
 			aa_reference_store_save(&js->store, &js->reference, rf->gpu_ms, rf->cpu_ms);
 		}
 		rf->samples = js->spec->reference_samples;
-		rf->nonfinite = count_nonfinite(&js->full) + count_nonfinite(&js->half);
+		rf->nonfinite = aa_count_nonfinite(&js->full) + aa_count_nonfinite(&js->half);
 		aa_image_encode_srgb8(&js->full, &js->ref8);
 		aa_image_encode_srgb8(&js->half, &js->half8);
 		if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
@@ -425,33 +379,16 @@ static int render_method(struct job_state *js, int i, struct aa_frame_ctx *ctx, 
 		snprintf(fr->passes[s].name, sizeof fr->passes[s].name, "%s", js->timer.spans[s].name);
 		fr->passes[s].gpu_ms = t->pass_ms[s];
 	}
+	/* the scoring (metrics, difference and FLIP images, events) runs beside the next frame's reference */
+	struct aa_image_rgbaf *output = &js->scored->outputs[i];
 	size_t n = (size_t)ctx->width * ctx->height * 4;
 	if (ctx->output->format == VK_FORMAT_R32G32B32A32_SFLOAT) {
-		memcpy(js->output.pixels, js->readback.mapped, n * sizeof(float));
+		memcpy(output->pixels, js->readback.mapped, n * sizeof(float));
 	} else {
 		const uint16_t *half = js->readback.mapped;
 		for (size_t k = 0; k < n; k++)
-			js->output.pixels[k] = half_to_float(half[k]);
+			output->pixels[k] = half_to_float(half[k]);
 	}
-	fr->nonfinite = count_nonfinite(&js->output);
-	aa_image_encode_srgb8(&js->output, &js->out8);
-	if (aa_metrics_compare(&js->ref8, &js->out8, &fr->metrics, err) ||
-	    aa_metrics_perceptual(&js->ref8, &js->out8, &fr->metrics, &js->flip8, err))
-		return -1;
-	fr->over_threshold = aa_metrics_count_over(&js->ref8, &js->out8, js->result->spec.over_threshold);
-	diff_image(&js->ref8, &js->out8, &js->diff8);
-	fr->out_of_range = count_out_of_range(&js->output);
-	fr->flicker = NAN;
-	fr->change = fr->ref_change = NAN;
-	if (js->prev_out8[i].pixels) {
-		if (ctx->ordinal > 0) {
-			fr->flicker = aa_metrics_flicker(&js->out8, &js->prev_out8[i], &js->ref8, &js->prev_ref8);
-			fr->change = aa_metrics_mean_change(&js->out8, &js->prev_out8[i]);
-			fr->ref_change = aa_metrics_mean_change(&js->ref8, &js->prev_ref8);
-		}
-		memcpy(js->prev_out8[i].pixels, js->out8.pixels, (size_t)ctx->width * ctx->height * 4);
-	}
-	js->result->methods[i].frame_count = ctx->ordinal + 1;
 	return 0;
 }
 
@@ -494,7 +431,8 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 	struct aa_event ev = {.type = AA_EVENT_JOB_STARTED, .result = js.result};
 	if (rc == 0)
 		rc = emit(on_event, user, &ev, err);
-	int total = spec->frames * (1 + spec->method_count * spec->timing_repeat), done = 0;
+	if (rc == 0)
+		rc = aa_scoring_create(spec, js.result, on_event, user, false, &js.scoring, err);
 	const struct aa_camera_path *path = rc == 0 ? aa_scene_find_path(js.scene, spec->path) : NULL;
 	bool hold_first = strcmp(spec->path, "static") == 0;
 	bool still = hold_first && js.scene && !aa_scene_has_animation(js.scene) && spec->inject_nonfinite_frame < 0;
@@ -524,19 +462,21 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 				rc = shard_warmup_frame(&js, &ctx, err);
 			continue;
 		}
+		/* the reference runs beside the scoring of the frame before; no method is timed before that
+		 * scoring has ended (aa_scoring_wait) */
 		if (rc == 0)
 			rc = render_reference(&js, ordinal, ordinal > 0 && still, &ctx, err);
-		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_KEY, .result = js.result, .frame = ctx.frame,
-				       .frame_ordinal = ordinal, .text = js.store.explanation};
-		if (rc == 0 && spec->explain_key && js.store.explanation[0])
-			rc = emit(on_event, user, &ev, err);
-		ev = (struct aa_event){.type = AA_EVENT_REFERENCE_FRAME, .result = js.result, .frame = ctx.frame,
-				       .frame_ordinal = ordinal, .image = &js.ref8, .linear = &js.full};
 		if (rc == 0)
-			rc = emit(on_event, user, &ev, err);
-		ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done, .total = total};
-		if (rc == 0)
-			rc = emit(on_event, user, &ev, err);
+			rc = aa_scoring_wait(js.scoring, err);
+		if (rc == 0) {
+			js.scored = aa_scoring_next(js.scoring);
+			js.scored->ordinal = ordinal;
+			js.scored->frame = ctx.frame;
+			memcpy(js.scored->full.pixels, js.full.pixels, (size_t)js.full.width * js.full.height * 4 * sizeof(float));
+			memcpy(js.scored->ref8.pixels, js.ref8.pixels, (size_t)js.ref8.width * js.ref8.height * 4);
+			if (spec->explain_key)
+				snprintf(js.scored->key_text, sizeof js.scored->key_text, "%s", js.store.explanation);
+		}
 		/* Methods interleave frame by frame, each round in an order rotated by one, so that no method
 		 * always runs first after the reference (or after any other); round 0 is scored, the rest
 		 * re-time (timing.repeat). */
@@ -549,21 +489,17 @@ int aa_job_run_scene(struct aa_engine *engine, const struct aa_job_spec *spec, c
 					rc = retime_method(&js, i, &ctx, round, position, err);
 				} else {
 					rc = render_method(&js, i, &ctx, position, err);
-					ev = (struct aa_event){.type = AA_EVENT_METHOD_FRAME, .result = js.result,
-							       .frame = ctx.frame, .frame_ordinal = ordinal,
-							       .method_index = i, .image = &js.out8,
-							       .linear = &js.output, .diff = &js.diff8,
-							       .flip_map = &js.flip8};
-					if (rc == 0)
-						rc = emit(on_event, user, &ev, err);
+					js.scored->order[position] = i;
 				}
-				ev = (struct aa_event){.type = AA_EVENT_PROGRESS, .result = js.result, .done = ++done,
-						       .total = total};
-				if (rc == 0)
-					rc = emit(on_event, user, &ev, err);
 			}
 		}
+		if (rc == 0) /* scored, and its events emitted, while the next frame's reference is made */
+			rc = aa_scoring_submit(js.scoring, js.scored, err);
 	}
+	if (rc == 0 && js.scoring)
+		rc = aa_scoring_wait(js.scoring, err);
+	aa_scoring_destroy(js.scoring);
+	js.scoring = NULL;
 	js.result->wall_seconds = (aa_now_ms() - t_start) / 1000.0;
 	if (rc == 0) {
 		ev = (struct aa_event){.type = AA_EVENT_JOB_FINISHED, .result = js.result};
