@@ -51,8 +51,14 @@ static char *quality_text(const struct aa_job_result *r)
 	json_t *f;
 	json_array_foreach(json_object_get(doc, "methods"), i, m) {
 		json_array_append(q, json_object_get(m, "metrics"));
-		json_array_foreach(json_object_get(m, "frames"), k, f)
-			json_array_append(q, json_object_get(f, "metrics"));
+		json_array_foreach(json_object_get(m, "frames"), k, f) {
+			/* every figure of the frame but this run's times */
+			json_t *copy = json_deep_copy(f);
+			json_object_del(copy, "gpu_ms");
+			json_object_del(copy, "cpu_ms");
+			json_object_del(copy, "passes");
+			json_array_append_new(q, copy);
+		}
 	}
 	json_t *ref = json_object_get(doc, "reference");
 	json_array_append(q, json_object_get(ref, "convergence_mse"));
