@@ -1,4 +1,4 @@
-/* The key of a stored reference frame (DESIGN.md, "A reference is computed once"): the SHA-256 of
+/* The key of a stored reference frame (docs/reference-cache.md): the SHA-256 of
  * everything that decides its pixels, made of named parts so that a user can see why a lookup missed
  * (aalab run --explain-key). Methods are not part of it. */
 #ifndef AA_REFERENCE_KEY_H
