@@ -1,5 +1,6 @@
 /* The layout of a job directory: where each method's frames and diff images go, and writing them. */
 #include <errno.h>
+#include <pthread.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -76,6 +77,21 @@ static int write_linear(const char *dir, const char *label, int ordinal, const s
 	return ok ? 0 : aa_error_set(err, AA_ERR_IO, "", "cannot write %s: %s", path, strerror(errno));
 }
 
+struct image_write {
+	const char *dir;
+	const struct aa_image_rgba8 *img;
+	char rel[AA_LABEL_MAX * 2 + 32];
+	int rc;
+	struct aa_error err;
+};
+
+static void *image_write_main(void *arg)
+{
+	struct image_write *w = arg;
+	w->rc = aa_results_write_image(w->dir, w->rel, w->img, &w->err);
+	return NULL;
+}
+
 int aa_results_write_event_images(const char *dir, const struct aa_event *ev, struct aa_error *err)
 {
 	char rel[AA_LABEL_MAX * 2 + 32];
@@ -93,14 +109,29 @@ int aa_results_write_event_images(const char *dir, const struct aa_event *ev, st
 	const char *label = ev->result->methods[ev->method_index].label;
 	if (linear && write_linear(dir, label, ev->frame_ordinal, ev->linear, err))
 		return -1;
-	aa_results_frame_relpath("frames", label, ev->frame_ordinal, rel, sizeof rel);
-	if (aa_results_write_image(dir, rel, ev->image, err))
-		return -1;
-	aa_results_frame_relpath("diff", label, ev->frame_ordinal, rel, sizeof rel);
-	if (aa_results_write_image(dir, rel, ev->diff, err))
-		return -1;
-	if (!ev->flip_map)
-		return 0;
-	aa_results_frame_relpath("flip", label, ev->frame_ordinal, rel, sizeof rel);
-	return aa_results_write_image(dir, rel, ev->flip_map, err);
+	/* the frame, its difference and its FLIP map are encoded at once, each on a thread (PNG encoding is
+	 * most of what writing them costs) */
+	struct image_write w[3] = {{.dir = dir, .img = ev->image}, {.dir = dir, .img = ev->diff},
+				   {.dir = dir, .img = ev->flip_map}};
+	static const char *const kinds[3] = {"frames", "diff", "flip"};
+	pthread_t threads[3];
+	bool started[3] = {false, false, false};
+	for (int k = 0; k < 3; k++) {
+		if (!w[k].img)
+			continue;
+		aa_results_frame_relpath(kinds[k], label, ev->frame_ordinal, w[k].rel, sizeof w[k].rel);
+		started[k] = k > 0 && pthread_create(&threads[k], NULL, image_write_main, &w[k]) == 0;
+		if (!started[k])
+			image_write_main(&w[k]);
+	}
+	int rc = 0;
+	for (int k = 0; k < 3; k++) {
+		if (started[k])
+			pthread_join(threads[k], NULL);
+		if (w[k].img && w[k].rc && rc == 0) {
+			*err = w[k].err;
+			rc = -1;
+		}
+	}
+	return rc;
 }
