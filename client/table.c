@@ -52,13 +52,13 @@ void aa_print_table(const struct aa_job_result *r, FILE *out)
 		}
 		char reached[96];
 		snprintf(reached, sizeof reached, lo == hi ? "%d samples" : "%d-%d samples per frame", lo, hi);
-		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s%s (target %.1f dB, cap %d; "
+		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s (target %.1f dB, cap %d; "
 			"convergence N/2 vs N: %s dB", r->scene_name, r->spec.path, r->spec.width, r->spec.height,
-			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, cached, r->reference.target_psnr,
+			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, r->reference.target_psnr,
 			r->reference.samples, conv);
 		if (capped)
 			fprintf(out, "; %d frame%s stopped at the cap under the target", capped, capped == 1 ? "" : "s");
-		fprintf(out, "), %s\n\n", r->device_name);
+		fprintf(out, ")%s, %s\n\n", cached, r->device_name);
 	} else {
 		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples%s (convergence %d vs %d: "
 			"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,

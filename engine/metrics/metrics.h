@@ -31,6 +31,10 @@ struct aa_metrics {
 int aa_metrics_compare(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		       struct aa_metrics *out, struct aa_error *err);
 
+/* The same without SSIM (NAN): the error sums alone, e.g. a reference's N/2 image against its N one. */
+int aa_metrics_compare_pixels(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
+			      struct aa_metrics *out, struct aa_error *err);
+
 /* idiff's count: pixels where any of R,G,B differs by more than threshold x 255 (threshold a share of
  * full scale, 0..1). -1 on a size mismatch. */
 long aa_metrics_count_over(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test, double threshold);

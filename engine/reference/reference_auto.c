@@ -42,7 +42,7 @@ int aa_reference_render_auto(struct aa_reference *ref, struct aa_gpu_timer *time
 	for (;;) {
 		aa_image_encode_srgb8(full, full8);
 		aa_image_encode_srgb8(half, half8);
-		if (aa_metrics_compare(full8, half8, conv, err))
+		if (aa_metrics_compare_pixels(full8, half8, conv, err))
 			goto out;
 		if (converged(conv, target_psnr) || n >= ref->samples)
 			break;

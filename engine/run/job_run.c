@@ -238,7 +238,7 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, const
 		rf->nonfinite = aa_count_nonfinite(&js->full) + aa_count_nonfinite(&js->half);
 		aa_image_encode_srgb8(&js->full, &js->ref8);
 		aa_image_encode_srgb8(&js->half, &js->half8);
-		if (aa_metrics_compare(&js->ref8, &js->half8, &m, err))
+		if (aa_metrics_compare_pixels(&js->ref8, &js->half8, &m, err)) /* its MSE: no SSIM is reported */
 			return -1;
 	}
 	rf->convergence_mse = m.mse;
