@@ -51,3 +51,7 @@ EXTRA_DIST += $(DURABILITY_TESTS) tests/durability/durability_lib.py
 # the layout: no include goes up a layer of engine/ (docs/architecture.md, "Layers")
 TESTS += tests/layout/layers.py
 EXTRA_DIST += tests/layout/layers.py
+
+# the store of reference frames the tests use (AM_TESTS_ENVIRONMENT's XDG_CACHE_HOME)
+clean-local:
+	rm -rf tests/xdg-cache
