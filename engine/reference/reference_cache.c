@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <zlib.h>
@@ -421,6 +422,16 @@ int aa_reference_cache_put(struct aa_reference_cache *c, const uint8_t key[32], 
 		return -1;
 	}
 	const uint64_t written = sizeof header + recipe + plane_bytes * e->plane_count + sizeof trailer;
+	/* the store never takes the last of a disk that results (and aalabd's job states) are written to:
+	 * an entry that would leave under 64 MiB, or 5% of the file system, free is not written */
+	struct statvfs fs;
+	if (statvfs(c->dir, &fs) == 0) {
+		const uint64_t total = (uint64_t)fs.f_blocks * fs.f_frsize, avail = (uint64_t)fs.f_bavail * fs.f_frsize;
+		const uint64_t margin = total / 20 > (64ull << 20) ? total / 20 : (64ull << 20);
+		if (avail < written + margin)
+			return aa_error_set(err, AA_ERR_IO, "", "reference cache: not stored: %s would have under %llu MiB "
+					    "free", c->dir, (unsigned long long)(margin >> 20));
+	}
 	count(c, &c->stats.bytes_written, written);
 	pthread_mutex_lock(&c->lock);
 	c->bytes_now += written;

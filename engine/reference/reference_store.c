@@ -97,6 +97,10 @@ static void store(struct aa_reference_store *s, const struct aa_reference_key *k
 	struct aa_error err = {0};
 	const struct aa_reference_cache_stats before = aa_reference_cache_stats(s->cache);
 	if (aa_reference_cache_put(s->cache, key->sha256, e, &err)) {
+		/* once per job and message: a full disk would say so every frame */
+		for (int i = 0; i < s->result->warning_count; i++)
+			if (!strcmp(s->result->warnings[i], err.message))
+				return;
 		warn(s, err.message);
 	}
 	s->result->bytes_written += aa_reference_cache_stats(s->cache).bytes_written - before.bytes_written;

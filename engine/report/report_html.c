@@ -257,8 +257,11 @@ void aa_report_spread_labels(struct aa_point_label *l, int n)
 			moved = false;
 			for (int m = 0; m < k; m++) {
 				const struct aa_point_label *b = &l[order[m]];
-				if (a->x0 < b->x1 && b->x0 < a->x1 && fabs(a->y - b->y) < AA_LABEL_LINE) {
-					a->y = b->y + AA_LABEL_LINE;
+				/* only ever down: where b->y + a line rounds to b->y (a chart whose PSNR range is
+				 * next to nothing puts labels near 1e18 px) the label stays, rather than loop */
+				const double below = b->y + AA_LABEL_LINE;
+				if (a->x0 < b->x1 && b->x0 < a->x1 && fabs(a->y - b->y) < AA_LABEL_LINE && below > a->y) {
+					a->y = below;
 					moved = true;
 				}
 			}

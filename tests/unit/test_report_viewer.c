@@ -419,6 +419,10 @@ static void test_spread_labels(void **state)
 		for (int j = 0; j < i; j++)
 			if (l[i].x0 < l[j].x1 && l[j].x0 < l[i].x1)
 				assert_true(fabs(l[i].y - l[j].y) >= AA_LABEL_LINE);
+	/* labels where a line is below the precision of y (a PSNR range of next to nothing) end: they looped */
+	struct aa_point_label far[2] = {{.x = 1, .y = 1e18, .x0 = 1, .x1 = 40}, {.x = 2, .y = 1e18, .x0 = 2, .x1 = 40}};
+	aa_report_spread_labels(far, 2);
+	assert_true(far[0].y == 1e18);
 }
 
 int main(void)
