@@ -86,12 +86,14 @@ def compare(whole, merged, exact, tolerant, out=sys.stdout):
     return fails
 
 
+# times, and where this run found its references (the store, or rendered): of the run, not of its results
 TIMES = {"gpu_ms", "cpu_ms", "p10", "p90", "min", "mean", "median", "n", "started_at", "wall_seconds",
-         "timed_renders", "passes"}
+         "timed_renders", "passes", "cache"}
 
 
 def differences(x, y, path=""):
-    """Every value of two results documents that differs, but times (outside metrics), as "path: x vs y"."""
+    """Every value of two results documents that differs, but times and the store's outcomes (outside
+    metrics), as "path: x vs y"."""
     if isinstance(x, dict) and isinstance(y, dict):
         out = []
         for k in sorted(set(x) | set(y)):
