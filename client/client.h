@@ -42,8 +42,16 @@ void aa_print_suite_table(json_t *results, FILE *out);
 /* client/verdict_table.c: the verdicts of a suite run with "verdicts": true; returns how many failed that
  * must hold (0 when the results have no verdicts). */
 int aa_print_verdict_table(json_t *results, FILE *out);
-/* Prints the table of a results.json document: a suite's summary, or the methods of a job. */
-void aa_print_results_any(json_t *results, FILE *out);
+/* table.c: a results.json document as every command prints it: the verdict first, then the table (a
+ * suite's summary, or the methods of a job), then the warnings. */
+void aa_print_results(json_t *results, FILE *out);
+/* The cost-vs-accuracy table of one job's (or case's) results.json. */
+void aa_print_results_table(json_t *results, FILE *out);
+/* verdict_lines.c: the verdict ("verdict: HEADLINE" and its lines; per case for a suite), the warnings
+ * after a table ("warnings (N):", each with what to do; returns N), and the headline alone. */
+void aa_print_verdict(json_t *results, FILE *out);
+int aa_print_warnings(json_t *results, FILE *out);
+void aa_verdict_headline(json_t *results, char *out, size_t size);
 extern const char aa_diff_help[];
 /* Shards on a farm (docs/farm.md): aalab merge joins shard folders, aalab slurm writes and submits the
  * Slurm scripts. */
@@ -104,8 +112,6 @@ enum aa_watch_output { AA_WATCH_EVENTS, AA_WATCH_JSON, AA_WATCH_PROGRESS, AA_WAT
 int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output);
 /* cmd_get.c: downloads a job's files into dir (all, or results.json and report.html only). */
 int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images);
-/* cmd_get.c: the cost-vs-accuracy table from a results.json document. */
-void aa_print_results_table(json_t *results, FILE *out);
 /* cmd_submit.c: `aalab run` through the daemon: submit, watch, download into dir, print. */
 /* Runs the job on aalabd and fetches its files into dir; the table names shown_dir (where they end up). */
 int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,
@@ -128,15 +134,18 @@ int aa_submit_payload(json_t *files, const char *scene, size_t scene_size, char 
 int aa_list_args(const char *cmd, const char *usage, int argc, char **argv, int max_names, bool *json,
 		 int *first);
 
-/* table.c: the cost-vs-accuracy table and progress display */
-void aa_print_table(const struct aa_job_result *r, FILE *out);
+/* progress.c: a progress bar on a terminal (renders done, time so far, an estimate of the time left), a
+ * line per tenth elsewhere: "aalab CMD: WHAT D/T (P%, ETA T)" each time the share done passes another
+ * tenth, so a long job says where it is in at most ten lines. aa_progress_finish erases the bar. */
 void aa_progress_update(int done, int total, const char *what);
-void aa_progress_finish(void);
-/* Progress where stderr is not a terminal (logs, CI, Slurm): "aalab CMD: WHAT D/T (P%)" each time the
- * share done passes another tenth, so a long job says where it is in at most ten lines. */
 void aa_progress_line(const char *cmd, int done, int total, const char *what);
+void aa_progress_finish(void);
+/* Seconds since the first update (0 before one). */
+double aa_progress_seconds(void);
+/* "12s", "3m05s", "1h02m". */
+void aa_format_duration(double seconds, char *out, size_t size);
 
-/* Splits a --methods value into method strings: commas separate methods, except that a "key=value"
+/* job_args.c: splits a --methods value into method strings: commas separate methods, except that a "key=value"
  * token without ':' continues the previous method's parameters ("fxaa:preset=12,subpix=0.5,none"). */
 int aa_split_methods(const char *text, char ***out, int *count);
 void aa_free_strings(char **v, int count);

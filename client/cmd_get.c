@@ -80,45 +80,6 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 	return status;
 }
 
-void aa_print_results_table(json_t *results, FILE *out)
-{
-	size_t i;
-	json_t *m;
-	/* GPU ms: the median over every timed render, its 10th-90th percentile range and their count */
-	fprintf(out, "| method | GPU ms/frame | p10-p90 ms | n | MB | PSNR dB | SSIM | %% px over | alpha test |\n"
-		     "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
-	json_array_foreach(json_object_get(results, "methods"), i, m) {
-		json_t *metrics = json_object_get(m, "metrics");
-		json_t *psnr = json_object_get(json_object_get(metrics, "psnr"), "mean");
-		char psnr_text[32];
-		if (json_is_number(psnr))
-			snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(psnr));
-		else
-			snprintf(psnr_text, sizeof psnr_text, "identical");
-		json_t *gpu = json_object_get(m, "gpu_ms");
-		const char *alpha = json_string_value(json_object_get(m, "alpha_rule"));
-		/* idiff's count as a share of the pixels, with its threshold (results.json metrics.over_threshold) */
-		json_t *over = json_object_get(metrics, "over_threshold");
-		char over_text[48] = "-";
-		if (json_is_number(json_object_get(over, "mean_share")))
-			snprintf(over_text, sizeof over_text, "%.2f (>%g)",
-				 100.0 * json_number_value(json_object_get(over, "mean_share")),
-				 json_number_value(json_object_get(over, "threshold")));
-		fprintf(out, "| %s | %.1f | %.1f-%.1f | %lld | %.1f | %s | %.4f | %s | %s |\n",
-			json_string_value(json_object_get(m, "label")), json_number_value(json_object_get(gpu, "median")),
-			json_number_value(json_object_get(gpu, "p10")), json_number_value(json_object_get(gpu, "p90")),
-			(long long)json_integer_value(json_object_get(gpu, "n")),
-			json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
-			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")), over_text,
-			alpha ? alpha : "-");
-	}
-	json_t *warnings = json_object_get(results, "warnings"), *w;
-	if (json_array_size(warnings))
-		fprintf(out, "\nwarnings (what the scene draws differently from its files):\n");
-	json_array_foreach(warnings, i, w)
-		fprintf(out, "  %s\n", json_string_value(w));
-}
-
 int cmd_get(int argc, char **argv)
 {
 	struct aa_service_args a;

@@ -314,23 +314,12 @@ int cmd_run(int argc, char **argv)
 		json_dumpf(j, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 		json_decref(j);
-	} else if (spec.is_suite) {
+	} else {
+		/* what the results folder says, printed as a run through aalabd or 'aalab get' prints it */
 		json_t *j = aa_suite_results_to_json(result);
-		aa_print_suite_table(j, stdout);
+		aa_print_results(j, stdout);
 		/* a verdict the docs say must hold that fails is a failed run (the results are kept) */
 		const int failed = aa_print_verdict_table(j, stdout);
-		json_decref(j);
-		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
-		if (failed) {
-			fflush(stdout);
-			fprintf(stderr, "aalab run: %d verdict%s failed (docs/hard-cases.md)\n", failed,
-				failed == 1 ? "" : "s");
-			verdicts_failed = true;
-		}
-	} else {
-		aa_print_table(result->cases[0], stdout);
-		json_t *j = spec.verdicts ? aa_suite_results_to_json(result) : NULL;
-		const int failed = j ? aa_print_verdict_table(j, stdout) : 0;
 		json_decref(j);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
 		if (failed) {

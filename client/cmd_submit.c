@@ -171,7 +171,8 @@ int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *s
 		json_dumpf(results, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 	} else {
-		aa_print_results_any(results, stdout);
+		aa_print_results(results, stdout);
+		aa_print_verdict_table(results, stdout);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", shown_dir, shown_dir);
 	}
 	json_decref(results);

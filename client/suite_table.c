@@ -57,11 +57,3 @@ void aa_print_suite_table(json_t *results, FILE *out)
 		}
 	}
 }
-
-void aa_print_results_any(json_t *results, FILE *out)
-{
-	if (json_object_get(results, "cases"))
-		aa_print_suite_table(results, out);
-	else
-		aa_print_results_table(results, out);
-}

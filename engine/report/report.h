@@ -10,10 +10,6 @@
 /* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
 int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
 
-/* PSNR of the reference's N/2- against its N-sample image from the mean MSE over its frames; NAN when none
- * or identical (*identical says which). */
-double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical);
-
 /* The report's style sheet and HTML escaping, shared by the report of a suite (suite_results.c). */
 extern const char aa_report_style[];
 void aa_report_esc(FILE *o, const char *s);

@@ -79,21 +79,6 @@ static double curve_mean(const struct aa_method_result *m, int t)
 	return n ? sum / n : NAN;
 }
 
-double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical)
-{
-	double sum = 0;
-	int n = 0;
-	for (int i = 0; ref->frames && i < ref->frame_count; i++) {
-		const double mse = ref->frames[i].convergence_identical ? 0.0 : ref->frames[i].convergence_mse;
-		if (isfinite(mse)) {
-			sum += mse;
-			n++;
-		}
-	}
-	*identical = n > 0 && sum == 0;
-	return n && sum > 0 ? aa_psnr_from_mse(sum / n, 255.0) : NAN;
-}
-
 /* ------------------------------------------------------------------------------------------- charts */
 
 struct chart {

@@ -90,7 +90,9 @@ static void test_defaults(void **state)
 	assert_int_equal(s.frames, 1);
 	assert_int_equal(s.first_frame, 0);
 	assert_int_equal(s.reference_samples, 64);
-	assert_int_equal(s.timing_repeat, 1);
+	/* timing.repeat "auto": enough repeats of one frame for 5 timed renders per method */
+	assert_int_equal(s.timing_repeat, 5);
+	assert_true(s.timing_auto);
 	assert_true(s.keep_frames);
 	assert_int_equal(s.method_count, 2);
 	assert_string_equal(s.methods[0].method->name, "none");
@@ -226,7 +228,8 @@ static const struct bad_case bad_cases[] = {
 	{ "{\"timing\": 5}", AA_ERR_INVALID, "timing", "timing: expected an object like {\"repeat\": 5}" },
 	{ "{\"timing\": {\"repeats\": 5}}", AA_ERR_INVALID, "timing.repeats", "unknown key; valid keys: repeat" },
 	{ "{\"timing\": {\"repeat\": 0}}", AA_ERR_INVALID, "timing.repeat", "0 is out of range; valid range: 1 to 100" },
-	{ "{\"timing\": {\"repeat\": \"3\"}}", AA_ERR_INVALID, "timing.repeat", "expected an integer, got a string" },
+	{ "{\"timing\": {\"repeat\": \"3\"}}", AA_ERR_INVALID, "timing.repeat", "expected an integer or \"auto\", got the string \"3\"" },
+	{ "{\"timing\": {\"repeat\": 1.5}}", AA_ERR_INVALID, "timing.repeat", "expected an integer, got a number with a fraction" },
 	{ "{\"frames\": 2000, \"timing\": {\"repeat\": 51}}", AA_ERR_LIMIT, "timing.repeat",
 	  "2000 frames x 51 repeats is over 100000 timed renders per method" },
 	{ "{\"name\": null}", AA_ERR_INVALID, "name", "name: expected a string, got null" },

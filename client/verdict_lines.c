@@ -1,0 +1,88 @@
+/* The verdict and the warnings of a results.json (docs/results-format.md, "verdict", "warnings"), printed
+ * as the document says them: every command that shows results (run, watch, status, get, merge) prints
+ * these lines, and report.html and the dashboard show the same text. */
+#include <stdio.h>
+#include <string.h>
+
+#include "client.h"
+
+static const char *text(json_t *o, const char *key)
+{
+	const char *s = json_string_value(json_object_get(o, key));
+	return s ? s : "";
+}
+
+/* "verdict: HEADLINE" and its lines, for one case (named when case_id is given). */
+static void print_case_verdict(json_t *doc, const char *case_id, FILE *out)
+{
+	json_t *v = json_object_get(doc, "verdict"), *line;
+	size_t i;
+	if (!v)
+		return;
+	if (case_id)
+		fprintf(out, "verdict, %s: %s\n", case_id, text(v, "headline"));
+	else
+		fprintf(out, "verdict: %s\n", text(v, "headline"));
+	json_array_foreach(json_object_get(v, "lines"), i, line)
+		fprintf(out, "  %s\n", json_string_value(line));
+}
+
+void aa_print_verdict(json_t *results, FILE *out)
+{
+	json_t *cases = json_object_get(results, "cases"), *c;
+	size_t i;
+	if (!cases) {
+		print_case_verdict(results, NULL, out);
+		return;
+	}
+	json_array_foreach(cases, i, c)
+		print_case_verdict(c, text(c, "id"), out);
+}
+
+/* One warning: "  CODE: MESSAGE" and "    what to do: ACTION". */
+static void print_warning(json_t *w, const char *case_id, FILE *out)
+{
+	if (json_is_string(w)) { /* results.json written before warnings had codes */
+		fprintf(out, "  %s%s%s\n", case_id ? case_id : "", case_id ? ": " : "", json_string_value(w));
+		return;
+	}
+	fprintf(out, "  %s%s%s: %s\n", case_id ? case_id : "", case_id ? ": " : "", text(w, "code"), text(w, "message"));
+	if (*text(w, "action"))
+		fprintf(out, "    what to do: %s\n", text(w, "action"));
+}
+
+int aa_print_warnings(json_t *results, FILE *out)
+{
+	json_t *cases = json_object_get(results, "cases"), *c, *w;
+	size_t i, j;
+	int count = 0;
+	if (!cases)
+		count = (int)json_array_size(json_object_get(results, "warnings"));
+	json_array_foreach(cases, i, c)
+		count += (int)json_array_size(json_object_get(c, "warnings"));
+	if (count == 0)
+		return 0;
+	fprintf(out, "\nwarnings (%d):\n", count);
+	if (!cases)
+		json_array_foreach(json_object_get(results, "warnings"), j, w)
+			print_warning(w, NULL, out);
+	json_array_foreach(cases, i, c)
+		json_array_foreach(json_object_get(c, "warnings"), j, w)
+			print_warning(w, text(c, "id"), out);
+	return count;
+}
+
+void aa_verdict_headline(json_t *results, char *out, size_t size)
+{
+	json_t *cases = json_object_get(results, "cases");
+	if (!cases) {
+		snprintf(out, size, "%s", text(json_object_get(results, "verdict"), "headline"));
+		return;
+	}
+	/* a suite: the one case's headline, or how many cases have one */
+	if (json_array_size(cases) == 1) {
+		snprintf(out, size, "%s", text(json_object_get(json_array_get(cases, 0), "verdict"), "headline"));
+		return;
+	}
+	snprintf(out, size, "one per case, %zu cases", json_array_size(cases));
+}
