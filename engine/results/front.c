@@ -51,7 +51,7 @@ int aa_front_compute(const struct aa_front_entry *e, int n, struct aa_front_plac
 	int count = 0;
 	for (int i = 0; i < n; i++) {
 		place[i] = (struct aa_front_place){.kind = ranked(&e[i]) ? AA_PLACE_FRONT : AA_PLACE_NOT_RANKED,
-						   .beaten_by = -1, .beater_cost = AA_COST_UNKNOWN, .tie_group = -1};
+						   .beaten_by = -1, .beater_cost = AA_COST_UNKNOWN};
 		count += place[i].kind == AA_PLACE_FRONT;
 	}
 	for (int i = 0; i < n; i++)
@@ -82,26 +82,6 @@ int aa_front_compute(const struct aa_front_entry *e, int n, struct aa_front_plac
 		place[i].beaten_by = best;
 		place[i].beater_cost = best_cost;
 	}
-	/* ties: entries of the front joined by overlapping costs; a group is numbered by its first entry */
-	for (int i = 0; i < n; i++)
-		place[i].tie_group = place[i].kind == AA_PLACE_FRONT ? i : -1;
-	for (bool changed = true; changed;) {
-		changed = false;
-		for (int i = 0; i < n; i++)
-			for (int j = 0; j < n; j++)
-				if (place[i].tie_group >= 0 && place[j].tie_group > place[i].tie_group &&
-				    aa_cost_order(&e[i].cost, &e[j].cost) == AA_COST_SAME) {
-					place[j].tie_group = place[i].tie_group;
-					changed = true;
-				}
-	}
-	for (int i = 0; i < n; i++) { /* alone in its group: no tie */
-		bool shared = false;
-		for (int j = 0; j < n && place[i].tie_group >= 0; j++)
-			shared = shared || (j != i && place[j].tie_group == place[i].tie_group);
-		if (!shared)
-			place[i].tie_group = -1;
-	}
 	return count;
 }
 
@@ -121,50 +101,61 @@ static void amount(double v, int decimals, char *out, size_t size)
 		snprintf(out, size, "%.*f", decimals, v);
 }
 
-/* "taa: 2.38 dB less PSNR and 0.0100 more FLIP than msaa:4, for 1.25x its time" */
+/* "taa: 2.38 dB less PSNR and 0.0100 more FLIP than msaa:4, for 1.25x its time": what choosing m instead
+ * of what beats it gives up, and at what cost. */
 static void beaten_line(const struct aa_front_entry *m, const struct aa_front_entry *by, enum aa_cost_order cost,
 			char *out, size_t size)
 {
-	char psnr[96], flip[64] = "", text[32];
+	char dp_text[32], df_text[32], quality[256], cost_text[96];
 	const double dp = psnr_of(by) - psnr_of(m);
+	const bool flips = isfinite(m->flip) && isfinite(by->flip);
+	const double df = flips ? m->flip - by->flip : 0;
+	amount(dp, 2, dp_text, sizeof dp_text);
+	amount(df, 4, df_text, sizeof df_text);
 	if (isinf(by->psnr) && by->psnr > 0 && !isinf(m->psnr))
-		snprintf(psnr, sizeof psnr, "not identical to the reference (%s is)", by->label);
-	else if (dp > 0) {
-		amount(dp, 2, text, sizeof text);
-		snprintf(psnr, sizeof psnr, "%s dB less PSNR", text);
-	} else {
-		snprintf(psnr, sizeof psnr, "the same PSNR");
-	}
-	if (isfinite(m->flip) && isfinite(by->flip)) {
-		const double df = m->flip - by->flip;
-		amount(df, 4, text, sizeof text);
-		snprintf(flip, sizeof flip, df > 0 ? " and %s more FLIP" : " and the same FLIP", text);
-	}
-	char cost_text[96];
+		snprintf(quality, sizeof quality, "not identical to the reference where %s is%s%s%s", by->label,
+			 df > 0 ? ", and " : "", df > 0 ? df_text : "", df > 0 ? " more FLIP" : "");
+	else if (dp > 0 && df > 0)
+		snprintf(quality, sizeof quality, "%s dB less PSNR and %s more FLIP than %s", dp_text, df_text, by->label);
+	else if (dp > 0)
+		snprintf(quality, sizeof quality, "%s dB less PSNR than %s%s", dp_text, by->label,
+			 flips ? " (the same FLIP)" : "");
+	else if (df > 0)
+		snprintf(quality, sizeof quality, "%s more FLIP than %s (the same PSNR)", df_text, by->label);
+	else
+		snprintf(quality, sizeof quality, "the same PSNR%s as %s", flips ? " and FLIP" : "", by->label);
 	if (cost == AA_COST_LOWER)
 		snprintf(cost_text, sizeof cost_text, "for %.2fx its time", m->cost.median / by->cost.median);
 	else
-		snprintf(cost_text, sizeof cost_text, "at the same cost (GPU time spreads overlap)");
-	snprintf(out, size, "%s: %s%s than %s, %s", m->label, psnr, flip, by->label, cost_text);
+		snprintf(cost_text, sizeof cost_text, "at a cost the timings cannot tell apart (p10-p90 overlap)");
+	snprintf(out, size, "%s: %s, %s", m->label, quality, cost_text);
 }
 
-/* "a, b and c" of the labels of entries with the given place (and group); the count written. */
-static int list_labels(const struct aa_front_entry *e, const struct aa_front_place *place, int n,
-		       enum aa_front_place_kind kind, int group, char *out, size_t size)
+/* "a, b and c" of the labels of the entries marked in pick; the count written. */
+static int list_labels(const struct aa_front_entry *e, const bool *pick, int n, char *out, size_t size)
 {
 	int total = 0, done = 0;
 	for (int i = 0; i < n; i++)
-		total += place[i].kind == kind && (group < 0 || place[i].tie_group == group);
+		total += pick[i];
 	size_t used = 0;
 	out[0] = '\0';
 	for (int i = 0; i < n && used < size; i++) {
-		if (place[i].kind != kind || (group >= 0 && place[i].tie_group != group))
+		if (!pick[i])
 			continue;
-		const char *sep = done == 0 ? "" : done == total - 1 ? (group >= 0 ? " and " : ", ") : ", ";
+		const char *sep = done == 0 ? "" : done == total - 1 ? " and " : ", ";
 		used += (size_t)snprintf(out + used, size - used, "%s%s", sep, e[i].label);
 		done++;
 	}
 	return total;
+}
+
+/* Whether i and j tie in cost in a way that matters: both ranked, their spreads overlap, and one of them
+ * is on the front. */
+static bool tie(const struct aa_front_entry *e, const struct aa_front_place *place, int i, int j)
+{
+	return i != j && place[i].kind != AA_PLACE_NOT_RANKED && place[j].kind != AA_PLACE_NOT_RANKED &&
+	       (place[i].kind == AA_PLACE_FRONT || place[j].kind == AA_PLACE_FRONT) &&
+	       aa_cost_order(&e[i].cost, &e[j].cost) == AA_COST_SAME;
 }
 
 /* The fewest and most timed renders among the entries not ranked. */
@@ -184,6 +175,7 @@ static void headline(const struct aa_front_entry *e, const struct aa_front_place
 		     char *out, size_t size)
 {
 	char list[1024], counts[48];
+	bool pick[AA_FRONT_MAX] = {false};
 	int lo, hi;
 	not_ranked_counts(e, place, n, &lo, &hi);
 	if (lo == hi)
@@ -196,15 +188,26 @@ static void headline(const struct aa_front_entry *e, const struct aa_front_place
 		return;
 	}
 	size_t used = 0;
-	list_labels(e, place, n, AA_PLACE_FRONT, -1, list, sizeof list);
+	for (int i = 0; i < n; i++)
+		pick[i] = place[i].kind == AA_PLACE_FRONT;
+	list_labels(e, pick, n, list, sizeof list);
 	used += (size_t)snprintf(out + used, size - used, "front: %s", list);
+	/* each tie once, under the first of its two on the front: "ties in cost: smaa with none and fxaa" */
+	bool any = false;
 	for (int i = 0; i < n && used < size; i++) {
-		if (place[i].kind != AA_PLACE_FRONT || place[i].tie_group != i)
-			continue; /* a group is named once, at its first entry */
-		list_labels(e, place, n, AA_PLACE_FRONT, i, list, sizeof list);
-		used += (size_t)snprintf(out + used, size - used, "; %s tie in cost", list);
+		if (place[i].kind != AA_PLACE_FRONT)
+			continue;
+		for (int j = 0; j < n; j++)
+			pick[j] = tie(e, place, i, j) && !(place[j].kind == AA_PLACE_FRONT && j < i);
+		if (list_labels(e, pick, n, list, sizeof list) == 0)
+			continue;
+		used += (size_t)snprintf(out + used, size - used, "%s%s with %s", any ? "; " : "; ties in cost: ",
+					 e[i].label, list);
+		any = true;
 	}
-	if (used < size && list_labels(e, place, n, AA_PLACE_NOT_RANKED, -1, list, sizeof list) > 0)
+	for (int i = 0; i < n; i++)
+		pick[i] = place[i].kind == AA_PLACE_NOT_RANKED;
+	if (used < size && list_labels(e, pick, n, list, sizeof list) > 0)
 		snprintf(out + used, size - used, "; not ranked (%s): %s", counts, list);
 }
 
@@ -217,6 +220,8 @@ static const char *place_name(enum aa_front_place_kind k)
 
 json_t *aa_front_json(const struct aa_front_entry *e, int n)
 {
+	if (n < 0 || n > AA_FRONT_MAX)
+		return NULL;
 	struct aa_front_place *place = calloc((size_t)(n > 0 ? n : 1), sizeof *place);
 	json_t *v = json_object(), *over = json_array(), *front = json_array(), *ties = json_array(),
 	       *methods = json_array(), *lines = json_array(), *not_ranked = json_array();
@@ -239,13 +244,9 @@ json_t *aa_front_json(const struct aa_front_entry *e, int n)
 			json_array_append_new(front, json_string(e[i].label));
 		if (place[i].kind == AA_PLACE_NOT_RANKED)
 			json_array_append_new(not_ranked, json_string(e[i].label));
-		if (place[i].kind == AA_PLACE_FRONT && place[i].tie_group == i) {
-			json_t *group = json_array();
-			for (int k = 0; k < n; k++)
-				if (place[k].kind == AA_PLACE_FRONT && place[k].tie_group == i)
-					json_array_append_new(group, json_string(e[k].label));
-			json_array_append_new(ties, group);
-		}
+		for (int j = i + 1; j < n; j++)
+			if (tie(e, place, i, j))
+				json_array_append_new(ties, json_pack("[s, s]", e[i].label, e[j].label));
 		const bool identical = isinf(e[i].psnr) && e[i].psnr > 0;
 		json_t *m = json_pack("{s:s, s:s, s:{s:o, s:o, s:o, s:i}, s:o, s:b, s:o}", "label", e[i].label, "place",
 				      place_name(place[i].kind), "gpu_ms", "median", num(e[i].cost.median), "p10",

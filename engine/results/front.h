@@ -12,6 +12,8 @@
 
 /* Fewer timed renders than this and a method's cost is not ranked ("n=1: not ranked"). */
 #define AA_FRONT_MIN_TIMED_RENDERS AA_MIN_TIMED_RENDERS
+/* The most entries aa_front_json takes: the methods of a job. */
+#define AA_FRONT_MAX AA_MAX_METHODS
 
 /* One configuration: a method of a case, or any other set a front is computed over. */
 struct aa_front_entry {
@@ -31,7 +33,6 @@ struct aa_front_place {
 	enum aa_front_place_kind kind;
 	int beaten_by;               /* DOMINATED: the entry that beats it (on the front, the cheapest such) */
 	enum aa_cost_order beater_cost; /* DOMINATED: the beater's cost against this one's, LOWER or SAME */
-	int tie_group;               /* FRONT: entries of the front whose costs overlap share a group >= 0; -1 */
 };
 
 /* The order of a's cost against b's (b cheaper: HIGHER). */
@@ -43,8 +44,9 @@ enum aa_cost_order aa_cost_order(const struct aa_timing_stats *a, const struct a
 int aa_front_compute(const struct aa_front_entry *e, int n, struct aa_front_place *place);
 
 /* The front as results.json's verdict object (docs/results-format.md): the entries it was computed over,
- * the front, its cost ties, each beaten entry with what beats it, and the headline and lines every
- * output prints as they are. NULL when out of memory. */
+ * the front, the ties in cost that touch it (pairs of ranked entries whose spreads overlap, one of them on
+ * the front), each beaten entry with what beats it, and the headline and lines every output prints as
+ * they are. At most AA_FRONT_MAX entries; NULL when out of memory or over. */
 json_t *aa_front_json(const struct aa_front_entry *e, int n);
 
 /* The verdict of one job (or case of a suite): the front over its methods. */

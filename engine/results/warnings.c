@@ -84,7 +84,7 @@ static void timing_warnings(json_t *list, const struct aa_job_result *r, const j
 	const int repeat = r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1;
 	int fewest = -1;
 	size_t i, j;
-	json_t *m, *group, *label;
+	json_t *m, *pair;
 	json_array_foreach(json_object_get(verdict, "methods"), i, m) {
 		const int n = (int)json_integer_value(json_object_get(json_object_get(m, "gpu_ms"), "n"));
 		fewest = fewest < 0 || n < fewest ? n : fewest;
@@ -95,20 +95,24 @@ static void timing_warnings(json_t *list, const struct aa_job_result *r, const j
 		    "n=%d: %d frame%s x timing.repeat %d gives too few timed renders to rank costs (%d needed); the "
 		    "verdict ranks no method with fewer", fewest, r->spec.frames, r->spec.frames == 1 ? "" : "s", repeat,
 		    AA_FRONT_MIN_TIMED_RENDERS);
-	json_array_foreach(json_object_get(verdict, "ties"), i, group) {
-		char text[1024];
-		size_t used = 0;
-		json_array_foreach(group, j, label) {
-			json_t *gpu = json_object_get(verdict_method(verdict, json_string_value(label)), "gpu_ms");
-			if (used < sizeof text)
-				used += (size_t)snprintf(text + used, sizeof text - used, "%s%s %.2f-%.2f ms",
-							 j == 0 ? "" : j + 1 == json_array_size(group) ? " and " : ", ",
-							 json_string_value(label), number(gpu, "p10"), number(gpu, "p90"));
+	/* the ties that touch the front: pairs whose GPU time spreads overlap */
+	char text[1500];
+	size_t used = 0;
+	json_array_foreach(json_object_get(verdict, "ties"), i, pair) {
+		if (used >= sizeof text)
+			break;
+		for (j = 0; j < 2; j++) {
+			const char *label = json_string_value(json_array_get(pair, j));
+			json_t *gpu = json_object_get(verdict_method(verdict, label), "gpu_ms");
+			used += (size_t)snprintf(text + used, sizeof text - used, "%s%s %.2f-%.2f ms",
+						 j ? " and " : i ? "; " : "", label, number(gpu, "p10"), number(gpu, "p90"));
+			if (used >= sizeof text)
+				break;
 		}
-		add(list, "timing-spread", "treat them as equal in cost, or raise timing.repeat (--repeat) or run on a "
-		    "quieter machine to tell them apart", "timings too spread to rank: the GPU times (p10-p90) of %s "
-		    "overlap", text);
 	}
+	if (used)
+		add(list, "timing-spread", "treat each pair as equal in cost, or raise timing.repeat (--repeat) or run "
+		    "on a quieter machine to tell them apart", "GPU times too spread to rank (p10-p90 overlap): %s", text);
 	if (!isfinite(r->timestamp_period_ns))
 		add(list, "no-gpu-timestamps", "compare CPU times (cpu_ms) instead, or run on a device with timestamp "
 		    "queries", "this device has no GPU timestamps: GPU times are missing and no cost is ranked");
