@@ -112,6 +112,8 @@ enum aa_watch_output { AA_WATCH_EVENTS, AA_WATCH_JSON, AA_WATCH_PROGRESS, AA_WAT
 int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output);
 /* cmd_get.c: downloads a job's files into dir (all, or results.json and report.html only). */
 int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images);
+/* A finished job's results.json, parsed; NULL when it has none (yet) or the request failed. */
+json_t *aa_job_results(struct aa_conn *c, const char *job);
 /* cmd_submit.c: `aalab run` through the daemon: submit, watch, download into dir, print. */
 /* Runs the job on aalabd and fetches its files into dir; the table names shown_dir (where they end up). */
 int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,

@@ -80,6 +80,17 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 	return status;
 }
 
+json_t *aa_job_results(struct aa_conn *c, const char *job)
+{
+	char *data = NULL;
+	size_t size = 0;
+	json_t *r = request_file(c, job, "results.json", &data, &size);
+	json_t *doc = json_is_true(json_object_get(r, "ok")) && data ? json_loadb(data, size, 0, NULL) : NULL;
+	json_decref(r);
+	free(data);
+	return doc;
+}
+
 int cmd_get(int argc, char **argv)
 {
 	struct aa_service_args a;

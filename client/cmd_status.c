@@ -73,6 +73,10 @@ int cmd_status(int argc, char **argv)
 			json_dumpf(job, stdout, JSON_INDENT(2));
 			fputc('\n', stdout);
 		} else {
+			/* a finished job: its verdict first, as results.json says it; its warnings last */
+			json_t *results = !strcmp(text_of(job, "state", ""), "done") ? aa_job_results(conn, a.job) : NULL;
+			if (results)
+				aa_print_verdict(results, stdout);
 			json_t *spec = json_object_get(job, "spec"), *e = json_object_get(job, "error");
 			printf("job %s: %s, %lld of %lld renders done\n", json_string_value(json_object_get(job, "id")),
 			       json_string_value(json_object_get(job, "state")), json_integer_value(json_object_get(job, "done")),
@@ -108,6 +112,9 @@ int cmd_status(int argc, char **argv)
 			if (e)
 				printf("  error: %s\n", json_string_value(json_object_get(e, "message")));
 			print_summary(json_object_get(job, "summary"));
+			if (results)
+				aa_print_warnings(results, stdout);
+			json_decref(results);
 		}
 	}
 	json_decref(r);

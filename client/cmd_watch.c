@@ -11,6 +11,7 @@ static const char watch_help[] =
 	"\n"
 	"Streams a job's events until it ends: a progress bar on a terminal, one line per frame otherwise,\n"
 	"or the events themselves as JSON lines with --json. --after SEQ resumes after event SEQ.\n"
+	"It ends with a line that gives the job's state, its wall time, where its results are and the verdict.\n"
 	"Exit status: 0 the job is done, 1 it failed or was cancelled, 2 bad arguments or unknown job.\n";
 
 static void print_number(const char *what, json_t *v, const char *unit)
@@ -55,6 +56,40 @@ static void print_event(json_t *ev)
 	} else {
 		printf("%lld %s\n", seq, type);
 	}
+}
+
+/* The watch's last line, where a person looks when it ends: the job's state, its wall time, where its
+ * results are and the verdict ("job 000003 done in 12s; results: aalab get 000003; verdict: front: ..."). */
+static void print_final_line(struct aa_conn *c, const char *job)
+{
+	json_t *msg = json_pack("{ss ss}", "op", "status", "job", job);
+	json_t *r = aa_conn_request(c, msg, NULL, NULL);
+	json_decref(msg);
+	json_t *j = json_object_get(r, "job");
+	const char *state = json_string_value(json_object_get(j, "state"));
+	if (!state) {
+		json_decref(r);
+		return;
+	}
+	json_t *started = json_object_get(j, "started_at"), *finished = json_object_get(j, "finished_at");
+	char wall[32] = "";
+	if (json_is_number(started) && json_is_number(finished))
+		aa_format_duration(json_number_value(finished) - json_number_value(started), wall, sizeof wall);
+	printf("job %s %s%s%s", job, state, wall[0] ? " in " : "", wall);
+	if (!strcmp(state, "done")) {
+		json_t *results = aa_job_results(c, job);
+		char headline[1024] = "";
+		if (results)
+			aa_verdict_headline(results, headline, sizeof headline);
+		printf("; results: aalab get %s (results.json, report.html)%s%s", job, headline[0] ? "; verdict: " : "",
+		       headline);
+		json_decref(results);
+	} else if (json_object_get(j, "error")) {
+		printf(": %s", json_string_value(json_object_get(json_object_get(j, "error"), "message")));
+	}
+	putchar('\n');
+	fflush(stdout);
+	json_decref(r);
 }
 
 int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output)
@@ -114,6 +149,8 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		json_decref(ev);
 	}
 	aa_progress_finish();
+	if (output == AA_WATCH_EVENTS)
+		print_final_line(c, job);
 	if (!strcmp(last, "job_finished"))
 		return AA_EXIT_OK;
 	if (!strcmp(last, "job_cancelled") && !json)

@@ -9,6 +9,7 @@
 
 static int progress_width;      /* the bar's characters on the line, to erase it */
 static double progress_started; /* when the first update came, in seconds; 0: none yet */
+static int progress_done0;      /* the renders done at the first update: a watch may join a running job */
 static int progress_tenth;      /* the last tenth aa_progress_line printed (0: none yet) */
 
 static double now_seconds(void)
@@ -30,15 +31,15 @@ void aa_format_duration(double seconds, char *out, size_t size)
 		snprintf(out, size, "%dh%02dm", (int)(seconds / 3600), (int)(seconds / 60) % 60);
 }
 
-/* "ETA 12s" from the pace of the renders done so far; "ETA ?" before there is one. */
+/* "ETA 12s" from the pace of the renders done since the first update; "ETA ?" before there is one. */
 static void eta_text(int done, int total, double elapsed, char *out, size_t size)
 {
 	char t[32];
-	if (done <= 0 || done > total) {
+	if (done <= progress_done0 || done > total) {
 		snprintf(out, size, "ETA ?");
 		return;
 	}
-	aa_format_duration(elapsed / done * (total - done), t, sizeof t);
+	aa_format_duration(elapsed / (done - progress_done0) * (total - done), t, sizeof t);
 	snprintf(out, size, "ETA %s", t);
 }
 
@@ -46,8 +47,10 @@ void aa_progress_update(int done, int total, const char *what)
 {
 	const int bar = 30;
 	const double now = now_seconds();
-	if (progress_started == 0)
+	if (progress_started == 0) {
 		progress_started = now;
+		progress_done0 = done;
+	}
 	const double elapsed = now - progress_started;
 	int filled = total > 0 ? done * bar / total : 0;
 	char line[192], eta[48], spent[32], counts[48];
@@ -72,8 +75,10 @@ void aa_progress_line(const char *cmd, int done, int total, const char *what)
 	if (done < 0)
 		done = 0;
 	const double now = now_seconds();
-	if (progress_started == 0)
+	if (progress_started == 0) {
 		progress_started = now;
+		progress_done0 = done;
+	}
 	int tenth = done >= total ? 10 : (int)((long)done * 10 / total);
 	if (tenth <= progress_tenth)
 		return;
@@ -93,6 +98,7 @@ void aa_progress_finish(void)
 {
 	progress_tenth = 0;
 	progress_started = 0;
+	progress_done0 = 0;
 	if (progress_width) {
 		fprintf(stderr, "\r%*s\r", progress_width, "");
 		progress_width = 0;

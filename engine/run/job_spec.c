@@ -12,6 +12,7 @@
 #include "methods/methods.h"
 #include "run/job_spec.h"
 #include "util/json_text.h"
+#include "util/suggest.h"
 
 /* first_frame is a frame index on the camera path; capped so first_frame + frames fits an int easily. */
 #define AA_MAX_FIRST_FRAME 10000000
@@ -47,11 +48,12 @@ static int check_keys(const json_t *obj, const char *path, const char *const *va
 			i++;
 		if (valid[i])
 			continue;
-		char list[512] = "", where[300], k[64];
+		char list[512] = "", where[300], k[64], mean[96];
 		for (i = 0; valid[i]; i++)
 			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", valid[i]);
 		snprintf(where, sizeof where, "%s%s%s", path, *path ? "." : "", aa_shown_text(key, k, sizeof k));
-		return bad(err, AA_ERR_INVALID, where, "unknown key; valid keys: %s", list);
+		aa_suggest_text(key, valid, -1, mean, sizeof mean);
+		return bad(err, AA_ERR_INVALID, where, "unknown key%s; valid keys: %s", mean, list);
 	}
 	return 0;
 }
@@ -245,9 +247,11 @@ static int parse_method_object(const json_t *obj, const char *path, const struct
 		return parse_user_object(params, path, files, ms, err);
 	ms->method = aa_method_find(name);
 	if (!ms->method) {
+		char mean[96];
+		aa_method_suggest(name, mean, sizeof mean);
 		aa_method_list_names(known, sizeof known);
-		return bad(err, AA_ERR_NOT_FOUND, where, "unknown method \"%s\"; known methods: %s",
-			   aa_shown_text(name, text, sizeof text), known);
+		return bad(err, AA_ERR_NOT_FOUND, where, "unknown method \"%s\"%s; known methods: %s",
+			   aa_shown_text(name, text, sizeof text), mean, known);
 	}
 	aa_method_defaults(ms->method, &ms->params);
 
