@@ -10,13 +10,43 @@
 
 struct aa_cmd_entry {
 	const char *name;
-	const char *usage;
 	const char *summary;
 	int (*exec)(int argc, char **argv);
-	const char *help;   /* full --help text, when the usage line is not enough */
+	const char *help;   /* the full --help text: every option with its default */
 };
 
-extern const char aa_run_help[];
+extern const char aa_run_help[], aa_submit_help[], aa_watch_help[], aa_status_help[], aa_list_help[],
+	aa_cancel_help[], aa_get_help[];
+
+/* The job options of run, submit and slurm (job_args.c parses them), as their --help lists them. */
+#define AA_JOB_OPTIONS_HELP \
+	"  --scene NAME|FILE       scene name (see 'aalab scenes') or scene file (default thin-wires)\n" \
+	"  --path NAME             camera path: default, static, or one the scene defines (default default)\n" \
+	"  --methods LIST          comma-separated methods, e.g. none,fxaa,smaa (default none,ssaa:16;\n" \
+	"                          see 'aalab methods'; user:file=FILE.json for your own)\n" \
+	"  --frames N              frames to render (default 1)\n" \
+	"  --first-frame N         frame index on the path to start at (default 0)\n" \
+	"  --size WxH              image size (default 640x360)\n" \
+	"  --reference-samples N   samples of the accumulated reference, even (default 64); auto: doubled per\n" \
+	"                          frame until the N/2-vs-N PSNR reaches 45 dB (cap 256)\n" \
+	"  --repeat N|auto         render and time each method's frame N times, the first scored (default\n" \
+	"                          auto: the fewest repeats that give each method 5 timed renders, 5 for one\n" \
+	"                          frame, 1 from five frames on; job field timing.repeat). With fewer than 5\n" \
+	"                          timed renders a method's cost is not ranked\n" \
+	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n" \
+	"                          repeatable, stored in results.json (job field labels; default none)\n" \
+	"  --over-threshold X      count the pixels where any of R,G,B differs from the reference by more\n" \
+	"                          than X of full scale, as idiff does (0..1, default 0.01; job field\n" \
+	"                          over_threshold): the table's 'px >1% off' column\n" \
+	"  --baseline JOB          aalabd only: compare the finished job with JOB, a job id or\n" \
+	"                          latest:KEY=VALUE (job field baseline; default none)\n"
+
+/* The options of every command that talks to aalabd. */
+#define AA_CONNECT_OPTIONS_HELP \
+	"  --connect ADDRESS       the aalabd to use: unix:PATH or tcp:HOST:PORT (default $AALAB_CONNECT, then\n" \
+	"                          $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock)\n" \
+	"  --token-file FILE       on TCP, send the token in FILE's first line (default $AALAB_TOKEN, then\n" \
+	"                          the file $AALAB_TOKEN_FILE names)\n"
 
 /* Exit statuses: 0 success, 1 the work failed (or a --fail-above gate tripped), 2 bad usage or input. */
 #define AA_EXIT_OK 0
@@ -85,7 +115,9 @@ void aa_print_field_error(const char *lead, const char *path, const char *messag
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
  * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends
- * the token of $AALAB_TOKEN or $AALAB_TOKEN_FILE. */
+ * the token of --token-file (aa_conn_set_token_file), $AALAB_TOKEN or $AALAB_TOKEN_FILE; a refused one
+ * is said to be missing or wrong, with where it came from. */
+void aa_conn_set_token_file(const char *path);
 struct aa_conn;
 int aa_conn_open(const char *address, struct aa_conn **out, char *err, size_t err_size);
 void aa_conn_close(struct aa_conn *c);
@@ -93,11 +125,12 @@ int aa_conn_send(struct aa_conn *c, json_t *msg, const void *payload, size_t siz
 /* The next message; its payload (if it announced one) in *payload (malloc'ed). NULL at end of stream. */
 json_t *aa_conn_read(struct aa_conn *c, char **payload, size_t *size);
 json_t *aa_conn_request(struct aa_conn *c, json_t *msg, char **payload, size_t *size);
-/* Options of the service commands: [JOB] [--connect ADDRESS] [--json] and, where the command's help
- * names them, --state, --out, --file, --no-images, --label, --suite. Returns 0, 1 (help printed) or -1 (usage printed). */
+/* Options of the service commands: [JOB] [--connect ADDRESS] [--token-file FILE] [--json] and, where the
+ * command's help names them, --state, --out, --file, --no-images, --label, --suite, --no-wait. Returns 0,
+ * 1 (help printed) or -1 (usage printed). */
 struct aa_service_args {
 	const char *connect, *job, *state, *out, *file, *suite;
-	bool json, no_images;
+	bool json, no_images, no_wait;
 	int label_count;           /* --label KEY=VALUE filters (aalab list) */
 	const char *labels[16];
 };

@@ -8,12 +8,19 @@
 
 #include "client.h"
 
-static const char get_help[] =
-	"usage: aalab get JOB [--out DIR] [--file NAME] [--no-images] [--connect ADDRESS] [--json]\n"
+const char aa_get_help[] =
+	"usage: aalab get JOB [options]\n"
 	"\n"
-	"Downloads a finished job's results.json, report.html and frame images into DIR (default\n"
-	"results/job-JOB). --file NAME (results.json, report.html, frames/METHOD/NNNN.png, ...) writes that\n"
-	"one file to standard output instead. --json prints results.json to standard output.\n";
+	"Downloads a finished job's results.json, report.html and frame images from aalabd.\n"
+	"\n"
+	"  --out DIR               where they go (default results/job-JOB)\n"
+	"  --file NAME             write only this file to standard output: results.json, report.html,\n"
+	"                          frames/METHOD/NNNN.png, ... (default: every file, into DIR)\n"
+	"  --no-images             only results.json and report.html, no frame images\n"
+	"  --json                  print results.json to standard output instead\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 downloaded, 1 the daemon could not be reached or a file not written, 2 unknown job.\n";
 
 static json_t *request_file(struct aa_conn *c, const char *job, const char *file, char **data, size_t *size)
 {
@@ -94,11 +101,11 @@ json_t *aa_job_results(struct aa_conn *c, const char *job)
 int cmd_get(int argc, char **argv)
 {
 	struct aa_service_args a;
-	int rc = aa_service_args("get", get_help, argc, argv, &a);
+	int rc = aa_service_args("get", aa_get_help, argc, argv, &a);
 	if (rc)
 		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
 	if (!a.job) {
-		fputs(get_help, stderr);
+		fputs(aa_get_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;

@@ -23,11 +23,11 @@ const char aa_merge_help[] =
 	"warm-up), each given once; a folder without results.json is a shard that did not finish, and merge\n"
 	"names the frames that are missing.\n"
 	"\n"
-	"  --out DIR     where the merged results go (refused if DIR holds something that is not an aalab\n"
-	"                result; an earlier result only with --force)\n"
-	"  --force       replace the earlier aalab result in DIR\n"
-	"  --json        print the merged results.json instead of the table\n"
-	"  --quiet       no notes on standard error (border frames without images)\n"
+	"  --out DIR               where the merged results go (required; refused if DIR holds something\n"
+	"                          that is not an aalab result; an earlier result only with --force)\n"
+	"  --force                 replace the earlier aalab result in DIR\n"
+	"  --json                  print the merged results.json instead of the tables\n"
+	"  --quiet                 no notes on standard error (border frames without images)\n"
 	"\n"
 	"Exit status: 0 merged, 1 writing failed, 2 bad arguments, missing, duplicated or foreign shards.\n";
 

@@ -17,8 +17,7 @@
 #include "run/job_spec.h"
 
 const char aa_slurm_help[] =
-	"usage: aalab slurm [JOB.json] [job flags of run] --shards N --out DIR [--partition P] [--gres G]\n"
-	"                   [--time T] [--aalab PATH] [--submit] [--force]\n"
+	"usage: aalab slurm [JOB.json|SUITE] [options] --shards N --out DIR\n"
 	"\n"
 	"Splits the job into N shards of contiguous frames (a suite: of whole cases) and writes, in DIR:\n"
 	"  job.json        the job, in canonical form\n"
@@ -28,15 +27,17 @@ const char aa_slurm_help[] =
 	"With --submit it runs sbatch for both and prints the Slurm job ids. DIR must be on storage that every\n"
 	"node sees (docs/farm.md).\n"
 	"\n"
-	"  --shards N        shards (array tasks), 1 to the job's frames (a suite's cases)\n"
-	"  --out DIR         the farm folder (created; one that holds a job.json already only with --force)\n"
-	"  --partition P     #SBATCH --partition of both scripts\n"
-	"  --gres G          #SBATCH --gres of the shards, e.g. gpu:1 (one GPU per shard)\n"
-	"  --time T          #SBATCH --time of both scripts, e.g. 30:00\n"
-	"  --aalab PATH      the aalab the nodes run (default: this one, by absolute path)\n"
-	"  --submit          run sbatch and print the job ids\n"
-	"  --force           write the scripts into an earlier farm folder (its shards stay; each task\n"
-	"                    replaces its own, and merge checks that every shard is of this job)\n"
+	AA_JOB_OPTIONS_HELP
+	"  --shards N              shards (array tasks), 1 to the job's frames (a suite's cases); required\n"
+	"  --out DIR               the farm folder (required; created; one that holds a job.json already only\n"
+	"                          with --force)\n"
+	"  --partition P           #SBATCH --partition of both scripts (default: none, Slurm's default)\n"
+	"  --gres G                #SBATCH --gres of the shards, e.g. gpu:1 (default: none)\n"
+	"  --time T                #SBATCH --time of both scripts, e.g. 30:00 (default: none, the partition's)\n"
+	"  --aalab PATH            the aalab the nodes run (default: this one, by absolute path)\n"
+	"  --submit                run sbatch and print the job ids\n"
+	"  --force                 write the scripts into an earlier farm folder (its shards stay; each task\n"
+	"                          replaces its own, and merge checks that every shard is of this job)\n"
 	"\n"
 	"Exit status: 0 written (and submitted), 1 sbatch failed, 2 bad arguments or job.\n";
 

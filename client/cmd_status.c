@@ -5,11 +5,18 @@
 
 #include "client.h"
 
-static const char status_help[] =
-	"usage: aalab status JOB [--connect ADDRESS] [--json]\n"
+const char aa_status_help[] =
+	"usage: aalab status JOB [options]\n"
 	"\n"
-	"Shows a job's state and progress; once it is done, each method's GPU ms (median, p10-p90, n), memory,\n"
-	"PSNR, SSIM and alpha rule.\n";
+	"Shows a job on aalabd: once it is done, its verdict first (the methods on the cost-quality front,\n"
+	"ties, what beats each other method); then its state and renders done, scene or suite, labels, the\n"
+	"verdict against its baseline, each method's GPU ms (median, p10-p90, n), memory, PSNR, SSIM and\n"
+	"alpha rule, and last the warnings, each with what to do.\n"
+	"\n"
+	"  --json                  print the daemon's record of the job as JSON instead\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 shown, 1 the daemon could not be reached, 2 unknown job.\n";
 
 /* A string field, or fallback when it is missing. */
 static const char *text_of(json_t *o, const char *key, const char *fallback)
@@ -50,11 +57,11 @@ static void print_summary(json_t *summary)
 int cmd_status(int argc, char **argv)
 {
 	struct aa_service_args a;
-	int rc = aa_service_args("status", status_help, argc, argv, &a);
+	int rc = aa_service_args("status", aa_status_help, argc, argv, &a);
 	if (rc)
 		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
 	if (!a.job) {
-		fputs(status_help, stderr);
+		fputs(aa_status_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;

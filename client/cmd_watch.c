@@ -6,12 +6,18 @@
 
 #include "client.h"
 
-static const char watch_help[] =
-	"usage: aalab watch JOB [--after SEQ] [--connect ADDRESS] [--json] [--quiet]\n"
+const char aa_watch_help[] =
+	"usage: aalab watch JOB [options]\n"
 	"\n"
-	"Streams a job's events until it ends: a progress bar on a terminal, one line per frame otherwise,\n"
-	"or the events themselves as JSON lines with --json. --after SEQ resumes after event SEQ.\n"
-	"It ends with a line that gives the job's state, its wall time, where its results are and the verdict.\n"
+	"Follows a job on aalabd until it ends: a progress bar on a terminal (renders done, time so far and\n"
+	"an ETA), one line per event otherwise, then a last line with the job's state, its wall time, where\n"
+	"its results are and the verdict.\n"
+	"\n"
+	"  --after SEQ             resume after event SEQ (default 0: from the start)\n"
+	"  --json                  print the events as JSON lines instead\n"
+	"  --quiet                 print nothing; only the exit status tells\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
 	"Exit status: 0 the job is done, 1 it failed or was cancelled, 2 bad arguments or unknown job.\n";
 
 static void print_number(const char *what, json_t *v, const char *unit)
@@ -160,11 +166,11 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 
 int cmd_watch(int argc, char **argv)
 {
-	enum { OPT_AFTER = 256, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP };
+	enum { OPT_AFTER = 256, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP, OPT_TOKEN_FILE };
 	static const struct option opts[] = {
 		{"after", required_argument, 0, OPT_AFTER}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
-		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+		{"token-file", required_argument, 0, OPT_TOKEN_FILE}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	const char *connect = NULL;
 	long after = 0;
@@ -182,14 +188,15 @@ int cmd_watch(int argc, char **argv)
 			}
 			break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
 		case OPT_JSON: json = true; break;
 		case OPT_QUIET: quiet = true; break;
-		case OPT_HELP: fputs(watch_help, stdout); return AA_EXIT_OK;
-		default: fputs(watch_help, stderr); return AA_EXIT_USAGE;
+		case OPT_HELP: fputs(aa_watch_help, stdout); return AA_EXIT_OK;
+		default: fputs(aa_watch_help, stderr); return AA_EXIT_USAGE;
 		}
 	}
 	if (optind + 1 != argc) {
-		fputs(watch_help, stderr);
+		fputs(aa_watch_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;

@@ -544,6 +544,11 @@ static json_t *compare_case(struct side_case *bc, struct side_case *nc, const st
 			      "value", num(factor[0]), "interval", num(factor_interval[0][0]), num(factor_interval[0][1]),
 			      "cpu_ms", "value", num(factor[1]), "interval", num(factor_interval[1][0]),
 			      num(factor_interval[1][1]));
+		/* each run's verdict of the case (results.json's cost-quality front), as it is */
+		json_t *vb = json_object_get(bc->obj, "verdict"), *vn = json_object_get(nc->obj, "verdict");
+		if (c)
+			json_object_set_new(c, "verdict", json_pack("{s:O, s:O}", "base", vb ? vb : json_null(), "new",
+								     vn ? vn : json_null()));
 		if (c && bc->frames != nc->frames)
 			json_object_set_new(c, "frames_changed", json_pack("{s:i, s:i}", "base", bc->frames, "new",
 									   nc->frames));
@@ -580,6 +585,46 @@ static void missing_list(const struct side *s, char *out, size_t size, json_t *a
 			if (used < size)
 				used += (size_t)snprintf(out + used, size - used, "%s%s", used ? ", " : "", s->cases[c].id);
 		}
+}
+
+/* Why no gate judged anything: when no method paired, each shared case's methods ("case X: BASE has fxaa,
+ * smaa; NEW has taa"); otherwise why the first gate was not judged. */
+static void nothing_judged(const struct side *b, const struct side *n, json_t *cases, char *out, size_t size)
+{
+	bool pairs = false;
+	for (int i = 0; i < b->case_count; i++)
+		for (int m = 0; b->cases[i].paired >= 0 && m < b->cases[i].method_count; m++)
+			pairs = pairs || b->cases[i].methods[m].paired >= 0;
+	if (pairs) {
+		const char *why = "no gates";
+		size_t i, j;
+		json_t *c, *m;
+		json_array_foreach(cases, i, c)
+			json_array_foreach(json_object_get(c, "methods"), j, m)
+				if (!strcmp(why, "no gates") && json_array_size(json_object_get(m, "gates")))
+					why = json_string_value(json_object_get(json_array_get(json_object_get(m, "gates"), 0),
+										"message"));
+		snprintf(out, size, "nothing was judged, so nothing can pass: the methods paired, but no gate could judge "
+			 "them (%s); choose gates these runs can judge", why ? why : "no gates");
+		return;
+	}
+	size_t used = (size_t)snprintf(out, size, "nothing was judged, so nothing can pass: no method pairs by label or "
+				       "by name;");
+	for (int i = 0; i < b->case_count && used < size; i++) {
+		const struct side_case *bc = &b->cases[i];
+		if (bc->paired < 0)
+			continue;
+		const struct side_case *nc = &n->cases[bc->paired];
+		used += (size_t)snprintf(out + used, size - used, " case %s: BASE has", bc->id);
+		for (int m = 0; m < bc->method_count && used < size; m++)
+			used += (size_t)snprintf(out + used, size - used, "%s %s", m ? "," : "", bc->methods[m].label);
+		for (int m = 0; m < nc->method_count && used < size; m++)
+			used += (size_t)snprintf(out + used, size - used, "%s %s", m ? "," : "; NEW has", nc->methods[m].label);
+		if (used < size)
+			used += (size_t)snprintf(out + used, size - used, ";");
+	}
+	if (used < size)
+		snprintf(out + used, size - used, " compare runs of the same methods");
 }
 
 json_t *aa_compare_results(const json_t *base, const json_t *new_run, const struct aa_compare_options *opts,
@@ -632,6 +677,18 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 			goto done;
 		}
 		json_array_append_new(cases, c);
+	}
+	/* a comparison that judged nothing must not pass: name what did not pair, or why no gate could judge */
+	if (k.held + k.tripped == 0) {
+		char why[1500];
+		nothing_judged(&b, &n, cases, why, sizeof why);
+		aa_error_set(err, AA_ERR_INVALID, "", "%s", why);
+		json_decref(cases);
+		json_decref(tripped);
+		json_decref(gates);
+		json_decref(missing_base);
+		json_decref(missing_new);
+		goto done;
 	}
 	result = json_pack("{s:i, s:s, s:o, s:o, s:o, s:{s:s, s:s, s:f, s:i, s:i}, s:{s:i, s:i, s:i, s:i}, s:o, "
 			   "s:o, s:{s:o, s:o}}",
