@@ -111,6 +111,7 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 	const bool tty = isatty(STDERR_FILENO) && !quiet && !json;
 	const char *last = "";
 	char last_buf[32] = "";
+	int last_total = 0;
 	for (;;) {
 		json_t *ev = aa_conn_read(c, NULL, NULL);
 		if (!ev) {
@@ -135,6 +136,14 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		} else if (tty || output == AA_WATCH_PROGRESS) {
 			json_t *done = json_object_get(ev, "done");
 			int d = (int)json_integer_value(done), t = (int)json_integer_value(json_object_get(ev, "total"));
+			if (done)
+				last_total = t;
+			/* the frames' events count the renders so far, re-timings included, but none follows the
+			 * last re-timings: the end of the job is all of them */
+			if (!done && !strcmp(type, "job_finished") && last_total > 0) {
+				done = ev;
+				d = t = last_total;
+			}
 			if (done && tty)
 				aa_progress_update(d, t, json_string_value(json_object_get(ev, "method")));
 			else if (done)
