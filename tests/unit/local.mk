@@ -26,6 +26,7 @@ UNIT_TESTS = \
 	tests/unit/test_front \
 	tests/unit/test_warnings \
 	tests/unit/test_farm \
+	tests/unit/test_compare_arithmetic \
 	tests/unit/test_shard
 # what each pins:
 #  math, draw_order: matrices and the order transparent draws sort in
@@ -43,5 +44,6 @@ UNIT_TESTS = \
 #  EXR frames
 #  front, warnings: the cost-quality front and its text; results.json's warnings[], each and its absence
 #  verdicts, farm, shard: hard cases' verdicts, suites/labels/baselines/compare, shards and merging
+#  compare_arithmetic: every number aalab compare prints, worked out by hand; what it refuses
 check_PROGRAMS += $(UNIT_TESTS) tests/tools/metrics_tool
 TESTS += $(UNIT_TESTS)
