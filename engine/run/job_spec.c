@@ -424,8 +424,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->frames = 1;
 	spec->first_frame = 0;
 	spec->reference_samples = 64;
-	spec->timing_repeat = aa_timing_auto_repeat(spec->frames);
-	spec->timing_auto = true;
+	spec->timing_repeat = 1; /* a spec made in code times once; a job parsed from JSON defaults to "auto" */
 	spec->keep_frames = true;
 	spec->over_threshold = AA_OVER_THRESHOLD_DEFAULT;
 	spec->viewer = true;
@@ -479,6 +478,7 @@ int aa_job_spec_from_json_files(const json_t *job, const struct aa_file_source *
 	/* Parse into a copy so that a refused job leaves *spec as it was. */
 	struct aa_job_spec s;
 	aa_job_spec_defaults(&s);
+	s.timing_auto = true; /* timing.repeat "auto" unless the job says otherwise */
 	if (parse_job(job, files, &s, err) < 0) {
 		release_methods(&s);
 		return -1;

@@ -4,7 +4,8 @@
 
 #include "types/job.h"
 
-/* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
+/* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none and
+ * ssaa:16, each timed once. A job parsed from JSON has timing.repeat "auto" instead (aa_timing_auto_repeat). */
 void aa_job_spec_defaults(struct aa_job_spec *spec);
 /* Parses and validates a job object; every error names its field ("methods[1]", "size"). User methods
  * ("user:file=...") are refused: they need the _files form. */
