@@ -77,8 +77,9 @@ int aa_print_verdict_table(json_t *results, FILE *out);
 void aa_print_results(json_t *results, FILE *out);
 /* The cost-vs-accuracy table of one job's (or case's) results.json. */
 void aa_print_results_table(json_t *results, FILE *out);
-/* verdict_lines.c: the verdict ("verdict: HEADLINE" and its lines; per case for a suite), the warnings
- * after a table ("warnings (N):", each with what to do; returns N), and the headline alone. */
+/* verdict_lines.c: the verdict ("verdict: HEADLINE" and what beats each other method; for a suite each
+ * case's headline), the warnings after a table ("warnings (N):", each with what to do; returns N), and
+ * the headline alone. */
 void aa_print_verdict(json_t *results, FILE *out);
 int aa_print_warnings(json_t *results, FILE *out);
 void aa_verdict_headline(json_t *results, char *out, size_t size);

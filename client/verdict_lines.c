@@ -12,31 +12,23 @@ static const char *text(json_t *o, const char *key)
 	return s ? s : "";
 }
 
-/* "verdict: HEADLINE" and its lines, for one case (named when case_id is given). */
-static void print_case_verdict(json_t *doc, const char *case_id, FILE *out)
-{
-	json_t *v = json_object_get(doc, "verdict"), *line;
-	size_t i;
-	if (!v)
-		return;
-	if (case_id)
-		fprintf(out, "verdict, %s: %s\n", case_id, text(v, "headline"));
-	else
-		fprintf(out, "verdict: %s\n", text(v, "headline"));
-	json_array_foreach(json_object_get(v, "lines"), i, line)
-		fprintf(out, "  %s\n", json_string_value(line));
-}
-
 void aa_print_verdict(json_t *results, FILE *out)
 {
-	json_t *cases = json_object_get(results, "cases"), *c;
+	json_t *cases = json_object_get(results, "cases"), *c, *v, *line;
 	size_t i;
-	if (!cases) {
-		print_case_verdict(results, NULL, out);
+	if (!cases) { /* a job: the headline, then what beats each other method and by how much */
+		if (!(v = json_object_get(results, "verdict")))
+			return;
+		fprintf(out, "verdict: %s\n", text(v, "headline"));
+		json_array_foreach(json_object_get(v, "lines"), i, line)
+			fprintf(out, "  %s\n", json_string_value(line));
 		return;
 	}
+	/* a suite: a headline per case; the table's verdict column names what beats each method, and each
+	 * case's report and results.json say by how much */
 	json_array_foreach(cases, i, c)
-		print_case_verdict(c, text(c, "id"), out);
+		if ((v = json_object_get(c, "verdict")))
+			fprintf(out, "verdict, %s: %s\n", text(c, "id"), text(v, "headline"));
 }
 
 /* One warning: "  CODE: MESSAGE" and "    what to do: ACTION". */

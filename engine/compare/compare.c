@@ -411,12 +411,15 @@ static void judge(const struct aa_gate *g, const double quality_change[4], const
 	if (why_unknown) {
 		snprintf(message, sizeof message, "%s: not judged: %s", g->text, why_unknown);
 	} else if (cost_metric) {
-		char lo_text[48], hi_text[48];
+		char lo_text[48], hi_text[48], raw_text[48];
 		change_text(lo, g->percent, g->metric, lo_text, sizeof lo_text);
 		change_text(hi, g->percent, g->metric, hi_text, sizeof hi_text);
 		const struct cost_change *c = &cost[g->metric == AA_GATE_CPU_MS];
-		snprintf(message, sizeof message, "%s p10 changed by %s (%.3g -> %.3g ms, machine factor x%.2f; %.0f%% "
-			 "interval %s to %s): %s %s", metric, text, b, n, c->factor, 100 * INTERVAL_LEVEL, lo_text, hi_text,
+		change_text(g->percent ? c->change_pct : c->change, g->percent, g->metric, raw_text, sizeof raw_text);
+		/* what was measured, then what was judged: the two differ by the machine factor */
+		snprintf(message, sizeof message, "%s p10 %.3g -> %.3g ms (%s as measured); judged over the machine factor "
+			 "x%.2f: %s, %.0f%% interval %s to %s: %s %s", metric, b, n, raw_text, c->factor, text,
+			 100 * INTERVAL_LEVEL, lo_text, hi_text,
 			 trips ? "the whole interval is past the gate" : "within the gate or the runs' spread", g->text);
 	} else {
 		snprintf(message, sizeof message, "%s changed by %s (%.6g -> %.6g): %s %s", metric, text, b, n,

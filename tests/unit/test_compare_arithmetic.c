@@ -134,7 +134,9 @@ static void test_two_methods(void **state)
 	assert_has(t, "  b         10.00 -> 10.00       +0.0%       +0.0% [+0.0%, +0.0%]               held");
 	assert_has(t, "machine factor x1.00 (none: fewer than 3 methods");
 	assert_has(t, "TRIPPED: 8 gates checked, 5 held, 3 tripped, 0 not judged");
-	assert_has(t, "tripped gpu_ms > +50% in s/default/64x36, a: gpu_ms p10 changed by +100.0% (10 -> 20 ms");
+	assert_has(t, "tripped gpu_ms > +50% in s/default/64x36, a: gpu_ms p10 10 -> 20 ms (+100.0% as measured); judged "
+		      "over the machine factor x1.00: +100.0%, 90% interval +100.0% to +100.0%: the whole interval is past "
+		      "the gate gpu_ms > +50%");
 	free(t);
 	json_decref(cmp);
 }
@@ -166,6 +168,8 @@ static void test_machine_factor(void **state)
 	char *t = table_of(cmp);
 	assert_has(t, "  c         40.00 -> 88.00       +120.0%     +100.0% [+100.0%, +100.0%]         TRIPPED gpu_ms > +50%");
 	assert_has(t, "machine factor x1.10: NEW ran this case 10% slower than BASE");
+	assert_has(t, "tripped gpu_ms > +50% in s/default/64x36, c: gpu_ms p10 40 -> 88 ms (+120.0% as measured); judged "
+		      "over the machine factor x1.10: +100.0%, 90% interval +100.0% to +100.0%");
 	free(t);
 	json_decref(cmp);
 }
