@@ -83,6 +83,9 @@ void aa_print_results_table(json_t *results, FILE *out);
 void aa_print_verdict(json_t *results, FILE *out);
 int aa_print_warnings(json_t *results, FILE *out);
 void aa_verdict_headline(json_t *results, char *out, size_t size);
+/* The verdict's word for a method of one job's (or case's) document: "front", "beaten by smaa",
+ * "not ranked", or "-" without a verdict. */
+void aa_verdict_place(json_t *doc, const char *label, char *out, size_t size);
 extern const char aa_diff_help[];
 /* Shards on a farm (docs/farm.md): aalab merge joins shard folders, aalab slurm writes and submits the
  * Slurm scripts. */

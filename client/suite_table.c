@@ -5,35 +5,11 @@
 #include <string.h>
 
 #include "client.h"
-
-static double number(json_t *o, const char *key)
-{
-	json_t *v = json_object_get(o, key);
-	return json_is_number(v) ? json_number_value(v) : NAN;
-}
+#include "util/json_text.h"
 
 static double metric_mean(json_t *method, const char *name)
 {
-	return number(json_object_get(json_object_get(method, "metrics"), name), "mean");
-}
-
-/* The verdict's word for a method of a case: "front", "beaten by smaa", "not ranked". */
-static void place_of(json_t *c, const char *label, char *out, size_t size)
-{
-	size_t i;
-	json_t *m;
-	snprintf(out, size, "-");
-	json_array_foreach(json_object_get(json_object_get(c, "verdict"), "methods"), i, m) {
-		const char *l = json_string_value(json_object_get(m, "label"));
-		if (!l || strcmp(l, label))
-			continue;
-		json_t *by = json_object_get(m, "beaten_by");
-		const char *place = json_string_value(json_object_get(m, "place"));
-		if (by)
-			snprintf(out, size, "beaten by %s", json_string_value(json_object_get(by, "method")));
-		else
-			snprintf(out, size, "%s", place ? place : "-");
-	}
+	return aa_json_number(json_object_get(json_object_get(method, "metrics"), name), "mean");
 }
 
 void aa_print_suite_table(json_t *results, FILE *out)
@@ -72,12 +48,12 @@ void aa_print_suite_table(json_t *results, FILE *out)
 			if (n < AA_MIN_TIMED_RENDERS)
 				snprintf(spread, sizeof spread, "n=%lld: not ranked", n);
 			else
-				snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", number(gpu, "p10"), number(gpu, "p90"), n);
-			place_of(c, json_string_value(json_object_get(m, "label")), place, sizeof place);
+				snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", aa_json_number(gpu, "p10"), aa_json_number(gpu, "p90"), n);
+			aa_verdict_place(c, json_string_value(json_object_get(m, "label")), place, sizeof place);
 			fprintf(out, "%-34s %-*s %9.2f %-19s %8.2f %9s %7.4f %7.4f %8.3f  %s\n",
 				j == 0 ? json_string_value(json_object_get(c, "id")) : "", width,
-				json_string_value(json_object_get(m, "label")), number(gpu, "median"), spread,
-				number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
+				json_string_value(json_object_get(m, "label")), aa_json_number(gpu, "median"), spread,
+				aa_json_number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
 				metric_mean(m, "flip"), metric_mean(m, "flicker"), place);
 		}
 	}

@@ -6,18 +6,7 @@
 #include <string.h>
 
 #include "client.h"
-
-static double number(json_t *o, const char *key)
-{
-	json_t *v = json_object_get(o, key);
-	return json_is_number(v) ? json_number_value(v) : NAN;
-}
-
-static const char *text(json_t *o, const char *key)
-{
-	const char *s = json_string_value(json_object_get(o, key));
-	return s ? s : "";
-}
+#include "util/json_text.h"
 
 /* PSNR as the table prints it: "identical" for identical images, "-" when there is none. */
 static void format_psnr(json_t *value, bool identical, char *out, size_t size)
@@ -39,10 +28,10 @@ static void print_header(json_t *r, FILE *out)
 	char conv[32];
 	format_psnr(json_object_get(ref, "convergence_psnr"), json_is_true(json_object_get(ref, "convergence_identical")),
 		    conv, sizeof conv);
-	fprintf(out, "scene %s, path %s, %s, %lld frame%s, ", text(json_object_get(r, "scene"), "name"), text(job, "path"),
-		text(job, "size"), frames, frames == 1 ? "" : "s");
+	fprintf(out, "scene %s, path %s, %s, %lld frame%s, ", aa_json_string(json_object_get(r, "scene"), "name"), aa_json_string(job, "path"),
+		aa_json_string(job, "size"), frames, frames == 1 ? "" : "s");
 	const long long samples = json_integer_value(json_object_get(ref, "samples"));
-	if (!strcmp(text(ref, "mode"), "auto")) {
+	if (!strcmp(aa_json_string(ref, "mode"), "auto")) {
 		/* the N each frame reached, as a range: "auto" alone would hide what the reference cost */
 		long long lo = -1, hi = -1;
 		size_t i;
@@ -55,33 +44,16 @@ static void print_header(json_t *r, FILE *out)
 		char reached[64];
 		snprintf(reached, sizeof reached, lo == hi ? "%lld samples" : "%lld-%lld samples per frame", lo, hi);
 		fprintf(out, "reference auto: %s (target %.1f dB, cap %lld; convergence N/2 vs N: %s dB)", reached,
-			number(ref, "target_psnr"), samples, conv);
+			aa_json_number(ref, "target_psnr"), samples, conv);
 	} else {
 		fprintf(out, "reference %lld samples (convergence %lld vs %lld: %s dB)", samples, samples / 2, samples, conv);
 	}
-	fprintf(out, ", %s\n", text(json_object_get(r, "device"), "name"));
+	fprintf(out, ", %s\n", aa_json_string(json_object_get(r, "device"), "name"));
 	const long long repeat = json_integer_value(json_object_get(timing, "repeat"));
 	fprintf(out, "timing: %lld timed render%s per method (%lld frame%s x repeat %lld%s), GPU ms the median with "
 		"its p10-p90 spread\n\n", json_integer_value(json_object_get(timing, "timed_renders_per_method")),
 		json_integer_value(json_object_get(timing, "timed_renders_per_method")) == 1 ? "" : "s", frames,
 		frames == 1 ? "" : "s", repeat, json_is_true(json_object_get(timing, "auto")) ? ", auto" : "");
-}
-
-/* The verdict's word for a method: "front", "beaten by smaa", "not ranked". */
-static void place_of(json_t *r, const char *label, char *out, size_t size)
-{
-	size_t i;
-	json_t *m;
-	snprintf(out, size, "-");
-	json_array_foreach(json_object_get(json_object_get(r, "verdict"), "methods"), i, m) {
-		if (strcmp(text(m, "label"), label))
-			continue;
-		json_t *by = json_object_get(m, "beaten_by");
-		if (by)
-			snprintf(out, size, "beaten by %s", text(by, "method"));
-		else
-			snprintf(out, size, "%s", text(m, "place"));
-	}
 }
 
 void aa_print_results_table(json_t *r, FILE *out)
@@ -93,7 +65,7 @@ void aa_print_results_table(json_t *r, FILE *out)
 	/* the method column fits the longest label, so parameters do not push the columns */
 	int width = 12;
 	json_array_foreach(methods, i, m)
-		width = (int)strlen(text(m, "label")) > width ? (int)strlen(text(m, "label")) : width;
+		width = (int)strlen(aa_json_string(m, "label")) > width ? (int)strlen(aa_json_string(m, "label")) : width;
 	/* idiff's count: pixels with a channel off by more than the threshold, as a share of the pixels */
 	char over_head[32];
 	json_t *first_over = json_object_get(json_object_get(json_object_get(json_array_get(methods, 0), "metrics"),
@@ -116,13 +88,13 @@ void aa_print_results_table(json_t *r, FILE *out)
 		if (n < AA_MIN_TIMED_RENDERS)
 			snprintf(spread, sizeof spread, "n=%lld: not ranked", n);
 		else
-			snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", number(gpu, "p10"), number(gpu, "p90"), n);
-		const double share = number(json_object_get(metrics, "over_threshold"), "mean_share");
+			snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", aa_json_number(gpu, "p10"), aa_json_number(gpu, "p90"), n);
+		const double share = aa_json_number(json_object_get(metrics, "over_threshold"), "mean_share");
 		snprintf(over, sizeof over, isfinite(share) ? "%.2f%%" : "-", 100.0 * share);
-		place_of(r, text(m, "label"), place, sizeof place);
-		fprintf(out, "%-*s %9.2f %-19s %8.1f %9s %7.4f %7.4f %11s", width, text(m, "label"), number(gpu, "median"),
-			spread, number(m, "memory_bytes") / 1048576.0, psnr_text,
-			number(json_object_get(metrics, "ssim"), "mean"), number(json_object_get(metrics, "flip"), "mean"),
+		aa_verdict_place(r, aa_json_string(m, "label"), place, sizeof place);
+		fprintf(out, "%-*s %9.2f %-19s %8.1f %9s %7.4f %7.4f %11s", width, aa_json_string(m, "label"), aa_json_number(gpu, "median"),
+			spread, aa_json_number(m, "memory_bytes") / 1048576.0, psnr_text,
+			aa_json_number(json_object_get(metrics, "ssim"), "mean"), aa_json_number(json_object_get(metrics, "flip"), "mean"),
 			over);
 		if (sequence) {
 			char cell[48], value[32];
@@ -134,18 +106,18 @@ void aa_print_results_table(json_t *r, FILE *out)
 			format_psnr(json_object_get(best, "value"), json_is_true(json_object_get(best, "identical")), value,
 				    sizeof value);
 			snprintf(cell, sizeof cell, "%s (%lld)", value, json_integer_value(json_object_get(best, "frame")));
-			fprintf(out, " %16s %8.3f", cell, number(json_object_get(metrics, "flicker"), "mean"));
+			fprintf(out, " %16s %8.3f", cell, aa_json_number(json_object_get(metrics, "flicker"), "mean"));
 		}
 		fprintf(out, "  %s\n", place);
 	}
 	/* cut-out materials: say how each method tested alpha, so that a ranking can be read fairly */
 	bool cutouts = false;
 	json_array_foreach(json_object_get(r, "passes"), i, m)
-		cutouts = cutouts || (!strcmp(text(m, "pass"), "alpha-test") && json_is_true(json_object_get(m, "ran")));
+		cutouts = cutouts || (!strcmp(aa_json_string(m, "pass"), "alpha-test") && json_is_true(json_object_get(m, "ran")));
 	if (cutouts) {
 		fputs("\nalpha test of cut-out materials:", out);
 		json_array_foreach(methods, i, m)
-			fprintf(out, "%s %s %s", i ? "," : "", text(m, "label"), text(m, "alpha_rule"));
+			fprintf(out, "%s %s %s", i ? "," : "", aa_json_string(m, "label"), aa_json_string(m, "alpha_rule"));
 		fputs("; reference per-sample (docs/methods.md)\n", out);
 	}
 }

@@ -671,14 +671,8 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 		if (b.cases[i].paired < 0)
 			continue;
 		json_t *c = compare_case(&b.cases[i], &n.cases[b.cases[i].paired], &o, tripped, &k, err);
-		if (!c) {
-			json_decref(cases);
-			json_decref(tripped);
-			json_decref(gates);
-			json_decref(missing_base);
-			json_decref(missing_new);
-			goto done;
-		}
+		if (!c)
+			goto drop;
 		json_array_append_new(cases, c);
 	}
 	/* a comparison that judged nothing must not pass: name what did not pair, or why no gate could judge */
@@ -686,12 +680,7 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 		char why[1500];
 		nothing_judged(&b, &n, cases, why, sizeof why);
 		aa_error_set(err, AA_ERR_INVALID, "", "%s", why);
-		json_decref(cases);
-		json_decref(tripped);
-		json_decref(gates);
-		json_decref(missing_base);
-		json_decref(missing_new);
-		goto done;
+		goto drop;
 	}
 	result = json_pack("{s:i, s:s, s:o, s:o, s:o, s:{s:s, s:s, s:f, s:i, s:i}, s:{s:i, s:i, s:i, s:i}, s:o, "
 			   "s:o, s:{s:o, s:o}}",
@@ -703,6 +692,13 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 			   missing_new);
 	if (!result)
 		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building the comparison");
+	goto done;
+drop: /* the parts of a comparison that will not be made */
+	json_decref(cases);
+	json_decref(tripped);
+	json_decref(gates);
+	json_decref(missing_base);
+	json_decref(missing_new);
 done:
 	side_free(&b);
 	side_free(&n);

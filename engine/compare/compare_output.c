@@ -7,18 +7,7 @@
 #include <string.h>
 
 #include "compare/compare.h"
-
-static double number(json_t *o, const char *key)
-{
-	json_t *v = json_object_get(o, key);
-	return json_is_number(v) ? json_number_value(v) : NAN;
-}
-
-static const char *string(json_t *o, const char *key)
-{
-	const char *s = json_string_value(json_object_get(o, key));
-	return s ? s : "";
-}
+#include "util/json_text.h"
 
 /* "commit=A, branch=main", or the source when there are no labels. */
 static void run_name(json_t *run, char *out, size_t size)
@@ -32,7 +21,7 @@ static void run_name(json_t *run, char *out, size_t size)
 			used += (size_t)snprintf(out + used, size - used, "%s%s=%s", used ? ", " : "", key,
 						 json_string_value(v) ? json_string_value(v) : "");
 	if (!used)
-		snprintf(out, size, "%s", string(run, "source"));
+		snprintf(out, size, "%s", aa_json_string(run, "source"));
 }
 
 /* A quality value as the tables print it: "identical" for an infinite PSNR, "-" when missing. */
@@ -40,7 +29,7 @@ static void value_text(json_t *q, const char *side, int decimals, bool psnr, cha
 {
 	char key[32];
 	snprintf(key, sizeof key, "%s_identical", side);
-	const double v = number(q, side);
+	const double v = aa_json_number(q, side);
 	if (psnr && json_is_true(json_object_get(q, key)))
 		snprintf(out, size, "identical");
 	else if (isfinite(v))
@@ -53,7 +42,7 @@ static void value_text(json_t *q, const char *side, int decimals, bool psnr, cha
 static void quality_cell(json_t *q, int decimals, bool psnr, char *out, size_t size)
 {
 	char bt[32], nt[32], ct[40];
-	const double c = number(q, "change");
+	const double c = aa_json_number(q, "change");
 	value_text(q, "base", decimals, psnr, bt, sizeof bt);
 	value_text(q, "new", decimals, psnr, nt, sizeof nt);
 	if (psnr && json_is_true(json_object_get(q, "base_identical")) != json_is_true(json_object_get(q, "new_identical")))
@@ -70,15 +59,15 @@ static void quality_cell(json_t *q, int decimals, bool psnr, char *out, size_t s
 static void cost_cells(json_t *c, char *medians, size_t msize, char *raw, size_t rsize, char *judged, size_t jsize)
 {
 	json_t *b = json_object_get(c, "base"), *n = json_object_get(c, "new"), *iv = json_object_get(c, "interval_pct");
-	snprintf(medians, msize, "%.2f -> %.2f", number(b, "median"), number(n, "median"));
-	snprintf(raw, rsize, isfinite(number(c, "change_median_pct")) ? "%+.1f%%" : "-", number(c, "change_median_pct"));
-	if (!isfinite(number(c, "judged_pct")))
+	snprintf(medians, msize, "%.2f -> %.2f", aa_json_number(b, "median"), aa_json_number(n, "median"));
+	snprintf(raw, rsize, isfinite(aa_json_number(c, "change_median_pct")) ? "%+.1f%%" : "-", aa_json_number(c, "change_median_pct"));
+	if (!isfinite(aa_json_number(c, "judged_pct")))
 		snprintf(judged, jsize, "-");
 	else if (json_is_number(json_array_get(iv, 0)))
-		snprintf(judged, jsize, "%+.1f%% [%+.1f%%, %+.1f%%]", number(c, "judged_pct"),
+		snprintf(judged, jsize, "%+.1f%% [%+.1f%%, %+.1f%%]", aa_json_number(c, "judged_pct"),
 			 json_number_value(json_array_get(iv, 0)), json_number_value(json_array_get(iv, 1)));
 	else
-		snprintf(judged, jsize, "%+.1f%% [no interval]", number(c, "judged_pct"));
+		snprintf(judged, jsize, "%+.1f%% [no interval]", aa_json_number(c, "judged_pct"));
 }
 
 /* What the gates of one kind (cost: gpu_ms and cpu_ms; quality: the others) said of a method: "TRIPPED
@@ -91,19 +80,19 @@ static void gates_cell(json_t *m, bool cost, char *out, size_t size)
 	char unknown_list[256] = "";
 	size_t uused = 0;
 	json_array_foreach(json_object_get(m, "gates"), i, g) {
-		const char *metric = string(g, "metric"), *result = string(g, "result");
+		const char *metric = aa_json_string(g, "metric"), *result = aa_json_string(g, "result");
 		if ((!strcmp(metric, "gpu_ms") || !strcmp(metric, "cpu_ms")) != cost)
 			continue;
 		if (!strcmp(result, "tripped")) {
 			if (used < size)
 				used += (size_t)snprintf(out + used, size - used, "%s%s", tripped ? ", " : "TRIPPED ",
-							 string(g, "gate"));
+							 aa_json_string(g, "gate"));
 			tripped++;
 		} else if (!strcmp(result, "held")) {
 			held++;
 		} else if (uused < sizeof unknown_list) {
 			uused += (size_t)snprintf(unknown_list + uused, sizeof unknown_list - uused, "%s%s",
-						  unknown ? ", " : "", string(g, "gate"));
+						  unknown ? ", " : "", aa_json_string(g, "gate"));
 			unknown++;
 		}
 	}
@@ -124,15 +113,15 @@ static void pairing_note(json_t *m, char *out, size_t size)
 	size_t used = 0, k;
 	json_t *pc;
 	out[0] = '\0';
-	if (!strcmp(string(m, "label"), string(m, "base_label")))
+	if (!strcmp(aa_json_string(m, "label"), aa_json_string(m, "base_label")))
 		return;
-	used = (size_t)snprintf(out, size, "was %s (paired by %s)", string(m, "base_label"), string(m, "paired_by"));
+	used = (size_t)snprintf(out, size, "was %s (paired by %s)", aa_json_string(m, "base_label"), aa_json_string(m, "paired_by"));
 	json_array_foreach(json_object_get(m, "params_changed"), k, pc) {
 		char *bv = json_dumps(json_object_get(pc, "base"), JSON_ENCODE_ANY | JSON_REAL_PRECISION(6));
 		char *nv = json_dumps(json_object_get(pc, "new"), JSON_ENCODE_ANY | JSON_REAL_PRECISION(6));
 		if (used < size)
 			used += (size_t)snprintf(out + used, size - used, "%s %s %s -> %s", k ? "," : ":",
-						 string(pc, "param"), bv ? bv : "?", nv ? nv : "?");
+						 aa_json_string(pc, "param"), bv ? bv : "?", nv ? nv : "?");
 		free(bv);
 		free(nv);
 	}
@@ -142,15 +131,15 @@ static void pairing_note(json_t *m, char *out, size_t size)
 static void memory_cell(json_t *m, char *out, size_t size)
 {
 	json_t *mem = json_object_get(json_object_get(m, "metrics"), "memory_bytes");
-	snprintf(out, size, "%.1f -> %.1f %+.1f", number(mem, "base") / 1048576.0, number(mem, "new") / 1048576.0,
-		 number(mem, "change") / 1048576.0);
+	snprintf(out, size, "%.1f -> %.1f %+.1f", aa_json_number(mem, "base") / 1048576.0, aa_json_number(mem, "new") / 1048576.0,
+		 aa_json_number(mem, "change") / 1048576.0);
 }
 
 /* Each run's verdict of the case (its results.json's headline), when the runs have one. */
 static void print_verdicts(json_t *c, FILE *out)
 {
 	json_t *v = json_object_get(c, "verdict");
-	const char *b = string(json_object_get(v, "base"), "headline"), *n = string(json_object_get(v, "new"), "headline");
+	const char *b = aa_json_string(json_object_get(v, "base"), "headline"), *n = aa_json_string(json_object_get(v, "new"), "headline");
 	if (*b)
 		fprintf(out, "  verdict BASE: %s\n", b);
 	if (*n)
@@ -163,8 +152,8 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 	char bn[512], nn[512];
 	run_name(json_object_get(cmp, "base"), bn, sizeof bn);
 	run_name(json_object_get(cmp, "new"), nn, sizeof nn);
-	fprintf(out, "BASE %s (%s)\nNEW  %s (%s)\ngates:", string(json_object_get(cmp, "base"), "source"), bn,
-		string(json_object_get(cmp, "new"), "source"), nn);
+	fprintf(out, "BASE %s (%s)\nNEW  %s (%s)\ngates:", aa_json_string(json_object_get(cmp, "base"), "source"), bn,
+		aa_json_string(json_object_get(cmp, "new"), "source"), nn);
 	size_t i, j;
 	json_t *g, *c, *m;
 	json_array_foreach(json_object_get(cmp, "gates"), i, g)
@@ -172,9 +161,9 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 	fprintf(out, "\nquality: BASE -> NEW and the change (renders are deterministic: any change is real).\n"
 		"GPU ms: the median BASE -> NEW and its raw change; then the change the gates judge: the p10 of the\n"
 		"timed renders, NEW's divided by the case's machine factor, with its %.0f%% interval. A > gate trips\n"
-		"when the whole interval is past it.\n", 100 * number(json_object_get(cmp, "cost_rule"), "interval_level"));
+		"when the whole interval is past it.\n", 100 * aa_json_number(json_object_get(cmp, "cost_rule"), "interval_level"));
 	json_array_foreach(json_object_get(cmp, "cases"), i, c) {
-		fprintf(out, "\ncase %s", string(c, "id"));
+		fprintf(out, "\ncase %s", aa_json_string(c, "id"));
 		json_t *fc = json_object_get(c, "frames_changed");
 		if (fc)
 			fprintf(out, "  (frames %lld -> %lld)", json_integer_value(json_object_get(fc, "base")),
@@ -183,8 +172,8 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 		print_verdicts(c, out);
 		int width = 8;
 		json_array_foreach(json_object_get(c, "methods"), j, m)
-			if ((int)strlen(string(m, "label")) > width)
-				width = (int)strlen(string(m, "label"));
+			if ((int)strlen(aa_json_string(m, "label")) > width)
+				width = (int)strlen(aa_json_string(m, "label"));
 		if (json_array_size(json_object_get(c, "methods"))) {
 			fprintf(out, "  %-*s  %-24s %-26s %-26s %-22s %-18s %s\n", width, "quality", "PSNR dB", "SSIM", "FLIP",
 				"flicker", "MB", "gates");
@@ -197,7 +186,7 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 				quality_cell(json_object_get(mt, "flicker"), 3, false, flicker, sizeof flicker);
 				memory_cell(m, mem, sizeof mem);
 				gates_cell(m, false, gates, sizeof gates);
-				fprintf(out, "  %-*s  %-24s %-26s %-26s %-22s %-18s %s\n", width, string(m, "label"), psnr, ssim,
+				fprintf(out, "  %-*s  %-24s %-26s %-26s %-22s %-18s %s\n", width, aa_json_string(m, "label"), psnr, ssim,
 					flip, flicker, mem, gates);
 				pairing_note(m, note, sizeof note);
 				if (note[0])
@@ -210,12 +199,12 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 				cost_cells(json_object_get(json_object_get(m, "metrics"), "gpu_ms"), medians, sizeof medians, raw,
 					   sizeof raw, judged, sizeof judged);
 				gates_cell(m, true, gates, sizeof gates);
-				fprintf(out, "  %-*s  %-20s %-11s %-34s %s\n", width, string(m, "label"), medians, raw, judged,
+				fprintf(out, "  %-*s  %-20s %-11s %-34s %s\n", width, aa_json_string(m, "label"), medians, raw, judged,
 					gates);
 			}
 		}
 		json_t *mf = json_object_get(json_object_get(c, "machine_factor"), "gpu_ms");
-		const double f = number(mf, "value");
+		const double f = aa_json_number(mf, "value");
 		if (isfinite(f) && f != 1)
 			fprintf(out, "  machine factor x%.2f: NEW ran this case %.0f%% %s than BASE; the judged change divides "
 				"NEW's times by it\n", f, fabs(100 * (f - 1)), f > 1 ? "slower" : "faster");
@@ -239,8 +228,8 @@ void aa_compare_print_table(const json_t *cmp_const, FILE *out)
 		json_integer_value(json_object_get(counts, "held")), json_integer_value(json_object_get(counts, "tripped")),
 		json_integer_value(json_object_get(counts, "unknown")));
 	json_array_foreach(json_object_get(cmp, "tripped"), i, g)
-		fprintf(out, "  tripped %s in %s, %s: %s\n", string(g, "gate"), string(g, "case"), string(g, "method"),
-			string(g, "message"));
+		fprintf(out, "  tripped %s in %s, %s: %s\n", aa_json_string(g, "gate"), aa_json_string(g, "case"), aa_json_string(g, "method"),
+			aa_json_string(g, "message"));
 }
 
 /* ------------------------------------------------------------------------------------------ JUnit */
@@ -277,11 +266,11 @@ int aa_compare_write_junit(const json_t *cmp_const, FILE *o)
 		json_array_foreach(json_object_get(c, "methods"), j, m)
 			json_array_foreach(json_object_get(m, "gates"), k, g) {
 				tests++;
-				failures += !strcmp(string(g, "result"), "tripped");
-				skipped += !strcmp(string(g, "result"), "unknown");
+				failures += !strcmp(aa_json_string(g, "result"), "tripped");
+				skipped += !strcmp(aa_json_string(g, "result"), "unknown");
 			}
 		fputs("  <testsuite name=\"", o);
-		xml_text(o, string(c, "id"));
+		xml_text(o, aa_json_string(c, "id"));
 		fprintf(o, "\" tests=\"%d\" failures=\"%d\" errors=\"0\" skipped=\"%d\" time=\"0\">\n", tests, failures,
 			skipped);
 		/* what was compared with what, for the reader of the CI page */
@@ -291,7 +280,7 @@ int aa_compare_write_junit(const json_t *cmp_const, FILE *o)
 			json_t *run = json_object_get(cmp, sides[s]), *v;
 			const char *key;
 			fprintf(o, "      <property name=\"%s.source\" value=\"", sides[s]);
-			xml_text(o, string(run, "source"));
+			xml_text(o, aa_json_string(run, "source"));
 			fputs("\"/>\n", o);
 			json_object_foreach(json_object_get(run, "labels"), key, v) {
 				fprintf(o, "      <property name=\"%s.label.", sides[s]);
@@ -304,13 +293,13 @@ int aa_compare_write_junit(const json_t *cmp_const, FILE *o)
 		fputs("    </properties>\n", o);
 		json_array_foreach(json_object_get(c, "methods"), j, m) {
 			json_array_foreach(json_object_get(m, "gates"), k, g) {
-				const char *result = string(g, "result");
+				const char *result = aa_json_string(g, "result");
 				fputs("    <testcase classname=\"", o);
-				xml_text(o, string(c, "id"));
+				xml_text(o, aa_json_string(c, "id"));
 				fputs("\" name=\"", o);
-				xml_text(o, string(m, "label"));
+				xml_text(o, aa_json_string(m, "label"));
 				fputs(": ", o);
-				xml_text(o, string(g, "gate"));
+				xml_text(o, aa_json_string(g, "gate"));
 				fputs("\" time=\"0\"", o);
 				if (!strcmp(result, "held")) {
 					fputs("/>\n", o);
@@ -319,12 +308,12 @@ int aa_compare_write_junit(const json_t *cmp_const, FILE *o)
 				fputs(">\n      <", o);
 				fputs(!strcmp(result, "tripped") ? "failure type=\"gate\"" : "skipped", o);
 				fputs(" message=\"", o);
-				xml_text(o, string(g, "message"));
+				xml_text(o, aa_json_string(g, "message"));
 				fputs("\">", o);
-				xml_text(o, string(g, "message"));
-				if (strcmp(string(m, "label"), string(m, "base_label"))) {
+				xml_text(o, aa_json_string(g, "message"));
+				if (strcmp(aa_json_string(m, "label"), aa_json_string(m, "base_label"))) {
 					fputs("\nBASE method: ", o);
-					xml_text(o, string(m, "base_label"));
+					xml_text(o, aa_json_string(m, "base_label"));
 				}
 				fprintf(o, "</%s>\n    </testcase>\n", !strcmp(result, "tripped") ? "failure" : "skipped");
 			}
@@ -390,27 +379,27 @@ int aa_compare_write_markdown(const json_t *cmp_const, FILE *o)
 		fputs("| case | method | gate | what changed |\n| --- | --- | --- | --- |\n", o);
 		json_array_foreach(json_object_get(cmp, "tripped"), i, g) {
 			fputs("| ", o);
-			md_text(o, string(g, "case"));
+			md_text(o, aa_json_string(g, "case"));
 			fputs(" | ", o);
-			md_text(o, string(g, "method"));
+			md_text(o, aa_json_string(g, "method"));
 			fputs(" | ", o);
-			md_code(o, string(g, "gate"));
+			md_code(o, aa_json_string(g, "gate"));
 			fputs(" | ", o);
-			md_text(o, string(g, "message"));
+			md_text(o, aa_json_string(g, "message"));
 			fputs(" |\n", o);
 		}
 		fputs("\n", o);
 	}
 	json_array_foreach(json_object_get(cmp, "cases"), i, c) {
 		fputs("<details><summary>", o);
-		md_text(o, string(c, "id"));
+		md_text(o, aa_json_string(c, "id"));
 		fputs("</summary>\n\n", o);
 		json_t *v = json_object_get(c, "verdict");
 		const char *sides[2] = {"base", "new"}, *names[2] = {"BASE", "NEW"};
 		for (int k = 0; k < 2; k++)
-			if (*string(json_object_get(v, sides[k]), "headline")) {
+			if (*aa_json_string(json_object_get(v, sides[k]), "headline")) {
 				fprintf(o, "Verdict %s: ", names[k]);
-				md_text(o, string(json_object_get(v, sides[k]), "headline"));
+				md_text(o, aa_json_string(json_object_get(v, sides[k]), "headline"));
 				fputs("  \n", o);
 			}
 		fputs("\n| method | PSNR dB | SSIM | FLIP | flicker | MB | GPU ms median | raw change | judged change "
@@ -430,7 +419,7 @@ int aa_compare_write_markdown(const json_t *cmp_const, FILE *o)
 			snprintf(gates, sizeof gates, "quality %s; time %s", quality_gates, cost_gates);
 			pairing_note(m, note, sizeof note);
 			fputs("| ", o);
-			md_text(o, string(m, "label"));
+			md_text(o, aa_json_string(m, "label"));
 			if (note[0]) {
 				fputs("<br>", o);
 				md_text(o, note);

@@ -4,12 +4,7 @@
 #include <string.h>
 
 #include "report/report.h"
-
-static const char *text(const json_t *o, const char *key)
-{
-	const char *s = json_string_value(json_object_get(o, key));
-	return s ? s : "";
-}
+#include "util/json_text.h"
 
 void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warnings)
 {
@@ -17,7 +12,7 @@ void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warni
 	json_t *v;
 	if (verdict) {
 		fputs("<section id=\"verdict\" class=\"verdict\"><h2>Verdict</h2>\n<p class=\"headline\">", o);
-		aa_report_esc(o, text(verdict, "headline"));
+		aa_report_esc(o, aa_json_string(verdict, "headline"));
 		fputs("</p>\n", o);
 		if (json_array_size(json_object_get(verdict, "lines"))) {
 			fputs("<ul>\n", o);
@@ -40,12 +35,12 @@ void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warni
 	fputs("<section id=\"warnings\" class=\"warnings\"><h2>Warnings</h2><ul>\n", o);
 	json_array_foreach(warnings, i, v) {
 		fputs("<li><b>", o);
-		aa_report_esc(o, text(v, "code"));
+		aa_report_esc(o, aa_json_string(v, "code"));
 		fputs("</b>: ", o);
-		aa_report_esc(o, json_is_string(v) ? json_string_value(v) : text(v, "message"));
-		if (*text(v, "action")) {
+		aa_report_esc(o, json_is_string(v) ? json_string_value(v) : aa_json_string(v, "message"));
+		if (*aa_json_string(v, "action")) {
 			fputs("<br><span class=\"todo\">What to do: ", o);
-			aa_report_esc(o, text(v, "action"));
+			aa_report_esc(o, aa_json_string(v, "action"));
 			fputs("</span>", o);
 		}
 		fputs("</li>\n", o);

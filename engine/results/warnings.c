@@ -9,6 +9,7 @@
 #include "methods/user_method.h"
 #include "results/front.h"
 #include "results/warnings.h"
+#include "util/json_text.h"
 
 static void __attribute__((format(printf, 4, 5)))
 add(json_t *list, const char *code, const char *action, const char *fmt, ...)
@@ -73,12 +74,6 @@ static json_t *verdict_method(const json_t *verdict, const char *label)
 	return NULL;
 }
 
-static double number(json_t *o, const char *key)
-{
-	json_t *v = json_object_get(o, key);
-	return json_is_number(v) ? json_number_value(v) : NAN;
-}
-
 static void timing_warnings(json_t *list, const struct aa_job_result *r, const json_t *verdict)
 {
 	const int repeat = r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1;
@@ -105,7 +100,7 @@ static void timing_warnings(json_t *list, const struct aa_job_result *r, const j
 			const char *label = json_string_value(json_array_get(pair, j));
 			json_t *gpu = json_object_get(verdict_method(verdict, label), "gpu_ms");
 			used += (size_t)snprintf(text + used, sizeof text - used, "%s%s %.2f-%.2f ms",
-						 j ? " and " : i ? "; " : "", label, number(gpu, "p10"), number(gpu, "p90"));
+						 j ? " and " : i ? "; " : "", label, aa_json_number(gpu, "p10"), aa_json_number(gpu, "p90"));
 			if (used >= sizeof text)
 				break;
 		}
