@@ -11,7 +11,7 @@ const char aa_list_help[] =
 	"usage: aalab list [options]\n"
 	"\n"
 	"Lists the jobs aalabd holds, oldest first: id, state, renders done, scene (or suite), labels, the\n"
-	"verdict against a baseline and methods.\n"
+	"comparison with its baseline (held or tripped) and methods.\n"
 	"\n"
 	"  --state STATE           only jobs in STATE: queued, running, done, failed or cancelled (default: all)\n"
 	"  --label KEY=VALUE       only jobs with this label; repeatable, all of them (default: any labels)\n"
@@ -68,7 +68,7 @@ int cmd_jobs(int argc, char **argv)
 	} else if (status == AA_EXIT_OK) {
 		size_t i;
 		json_t *job;
-		printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", "ID", "STATE", "DONE", "SCENE", "LABELS", "VERDICT",
+		printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", "ID", "STATE", "DONE", "SCENE", "LABELS", "BASELINE",
 		       "METHODS");
 		json_array_foreach(json_object_get(r, "jobs"), i, job) {
 			json_t *spec = json_object_get(job, "spec"), *m;

@@ -10,8 +10,8 @@ const char aa_status_help[] =
 	"\n"
 	"Shows a job on aalabd: once it is done, its verdict first (the methods on the cost-quality front,\n"
 	"ties, what beats each other method); then its state and renders done, scene or suite, labels, the\n"
-	"verdict against its baseline, each method's GPU ms (median, p10-p90, n), memory, PSNR, SSIM and\n"
-	"alpha rule, and last the warnings, each with what to do.\n"
+	"comparison with its baseline (held or tripped), each method's GPU ms (median, p10-p90, n), memory,\n"
+	"PSNR, SSIM and alpha rule, and last the warnings, each with what to do.\n"
 	"\n"
 	"  --json                  print the daemon's record of the job as JSON instead\n"
 	AA_CONNECT_OPTIONS_HELP
@@ -99,7 +99,7 @@ int cmd_status(int argc, char **argv)
 			json_t *v, *cmp = json_object_get(job, "compare");
 			json_object_foreach(json_object_get(spec, "labels"), key, v)
 				printf("  label %s=%s\n", key, json_string_value(v));
-			if (cmp) { /* the verdict against the job's baseline */
+			if (cmp) { /* the comparison with the job's baseline: its gates held or tripped */
 				json_t *counts = json_object_get(cmp, "counts"), *t;
 				size_t k;
 				printf("  baseline %s (job %s): %s", json_string_value(json_object_get(cmp, "baseline")),
