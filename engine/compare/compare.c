@@ -567,8 +567,9 @@ static json_t *run_json(const struct side *s, const char *source)
 {
 	json_t *d = s->doc;
 	json_t *labels = json_object_get(d, "labels");
-	return json_pack("{s:s, s:O, s:s, s:O, s:s, s:s, s:i}", "source", source ? source : "", "labels",
-			 json_is_object(labels) ? labels : json_object(), "suite",
+	/* a document without labels gets an empty object of its own ("o" takes it, "O" would keep a reference) */
+	return json_pack("{s:s, s:o, s:s, s:O, s:s, s:s, s:i}", "source", source ? source : "", "labels",
+			 json_is_object(labels) ? json_incref(labels) : json_object(), "suite",
 			 json_string_value(json_object_get(d, "suite")) ? json_string_value(json_object_get(d, "suite")) : "",
 			 "job_hash", json_object_get(d, "job_hash") ? json_object_get(d, "job_hash") : json_null(),
 			 "name", json_string_value(json_object_get(d, "name")) ? json_string_value(json_object_get(d, "name")) : "",

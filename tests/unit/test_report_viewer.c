@@ -112,7 +112,9 @@ static void test_verdict_panel(void **state)
 	(void)state;
 	json_t *verdict = json_pack("{s:s, s:[s], s:{s:i}}", "headline", "front: plain, </script><!--<script>x",
 				    "lines", "a & b: 1.00 dB less PSNR than <c>", "rule", "min_timed_renders", 5);
-	char *html = panel_of(verdict, json_array());
+	json_t *none = json_array();
+	char *html = panel_of(verdict, none);
+	json_decref(none);
 	assert_non_null(strstr(html, "<section id=\"verdict\""));
 	assert_non_null(strstr(html, "<p class=\"headline\">front: plain, &lt;/script&gt;&lt;!--&lt;script&gt;x</p>"));
 	assert_non_null(strstr(html, "<li>a &amp; b: 1.00 dB less PSNR than &lt;c&gt;</li>"));
