@@ -10,13 +10,43 @@
 
 struct aa_cmd_entry {
 	const char *name;
-	const char *usage;
 	const char *summary;
 	int (*exec)(int argc, char **argv);
-	const char *help;   /* full --help text, when the usage line is not enough */
+	const char *help;   /* the full --help text: every option with its default */
 };
 
-extern const char aa_run_help[];
+extern const char aa_run_help[], aa_submit_help[], aa_watch_help[], aa_status_help[], aa_list_help[],
+	aa_cancel_help[], aa_get_help[];
+
+/* The job options of run, submit and slurm (job_args.c parses them), as their --help lists them. */
+#define AA_JOB_OPTIONS_HELP \
+	"  --scene NAME|FILE       scene name (see 'aalab scenes') or scene file (default thin-wires)\n" \
+	"  --path NAME             camera path: default, static, or one the scene defines (default default)\n" \
+	"  --methods LIST          comma-separated methods, e.g. none,fxaa,smaa (default none,ssaa:16;\n" \
+	"                          see 'aalab methods'; user:file=FILE.json for your own)\n" \
+	"  --frames N              frames to render (default 1)\n" \
+	"  --first-frame N         frame index on the path to start at (default 0)\n" \
+	"  --size WxH              image size (default 640x360)\n" \
+	"  --reference-samples N   samples of the accumulated reference, even (default 64); auto: doubled per\n" \
+	"                          frame until the N/2-vs-N PSNR reaches 45 dB (cap 256)\n" \
+	"  --repeat N|auto         render and time each method's frame N times, the first scored (default\n" \
+	"                          auto: the fewest repeats that give each method 5 timed renders, 5 for one\n" \
+	"                          frame, 1 from five frames on; job field timing.repeat). With fewer than 5\n" \
+	"                          timed renders a method's cost is not ranked\n" \
+	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n" \
+	"                          repeatable, stored in results.json (job field labels; default none)\n" \
+	"  --over-threshold X      count the pixels where any of R,G,B differs from the reference by more\n" \
+	"                          than X of full scale, as idiff does (0..1, default 0.01; job field\n" \
+	"                          over_threshold): the table's 'px >1% off' column\n" \
+	"  --baseline JOB          aalabd only: compare the finished job with JOB, a job id or\n" \
+	"                          latest:KEY=VALUE (job field baseline; default none)\n"
+
+/* The options of every command that talks to aalabd. */
+#define AA_CONNECT_OPTIONS_HELP \
+	"  --connect ADDRESS       the aalabd to use: unix:PATH or tcp:HOST:PORT (default $AALAB_CONNECT, then\n" \
+	"                          $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock)\n" \
+	"  --token-file FILE       on TCP, send the token in FILE's first line (default $AALAB_TOKEN, then\n" \
+	"                          the file $AALAB_TOKEN_FILE names)\n"
 
 /* Exit statuses: 0 success, 1 the work failed (or a --fail-above gate tripped), 2 bad usage or input. */
 #define AA_EXIT_OK 0
@@ -42,8 +72,20 @@ void aa_print_suite_table(json_t *results, FILE *out);
 /* client/verdict_table.c: the verdicts of a suite run with "verdicts": true; returns how many failed that
  * must hold (0 when the results have no verdicts). */
 int aa_print_verdict_table(json_t *results, FILE *out);
-/* Prints the table of a results.json document: a suite's summary, or the methods of a job. */
-void aa_print_results_any(json_t *results, FILE *out);
+/* table.c: a results.json document as every command prints it: the verdict first, then the table (a
+ * suite's summary, or the methods of a job), then the warnings. */
+void aa_print_results(json_t *results, FILE *out);
+/* The cost-vs-accuracy table of one job's (or case's) results.json. */
+void aa_print_results_table(json_t *results, FILE *out);
+/* verdict_lines.c: the verdict ("verdict: HEADLINE" and what beats each other method; for a suite each
+ * case's headline), the warnings after a table ("warnings (N):", each with what to do; returns N), and
+ * the headline alone. */
+void aa_print_verdict(json_t *results, FILE *out);
+int aa_print_warnings(json_t *results, FILE *out);
+void aa_verdict_headline(json_t *results, char *out, size_t size);
+/* The verdict's word for a method of one job's (or case's) document: "front", "beaten by smaa",
+ * "not ranked", or "-" without a verdict. */
+void aa_verdict_place(json_t *doc, const char *label, char *out, size_t size);
 extern const char aa_diff_help[];
 /* Shards on a farm (docs/farm.md): aalab merge joins shard folders, aalab slurm writes and submits the
  * Slurm scripts. */
@@ -83,7 +125,9 @@ void aa_print_field_error(const char *lead, const char *path, const char *messag
 
 /* remote.c: a connection to aalabd (docs/protocol.md). address: "unix:PATH", "tcp:HOST:PORT", a socket
  * path, or NULL for $AALAB_CONNECT / $XDG_RUNTIME_DIR/aalabd.sock / /run/aalabd/aalabd.sock. TCP sends
- * the token of $AALAB_TOKEN or $AALAB_TOKEN_FILE. */
+ * the token of --token-file (aa_conn_set_token_file), $AALAB_TOKEN or $AALAB_TOKEN_FILE; a refused one
+ * is said to be missing or wrong, with where it came from. */
+void aa_conn_set_token_file(const char *path);
 struct aa_conn;
 int aa_conn_open(const char *address, struct aa_conn **out, char *err, size_t err_size);
 void aa_conn_close(struct aa_conn *c);
@@ -91,11 +135,12 @@ int aa_conn_send(struct aa_conn *c, json_t *msg, const void *payload, size_t siz
 /* The next message; its payload (if it announced one) in *payload (malloc'ed). NULL at end of stream. */
 json_t *aa_conn_read(struct aa_conn *c, char **payload, size_t *size);
 json_t *aa_conn_request(struct aa_conn *c, json_t *msg, char **payload, size_t *size);
-/* Options of the service commands: [JOB] [--connect ADDRESS] [--json] and, where the command's help
- * names them, --state, --out, --file, --no-images, --label, --suite. Returns 0, 1 (help printed) or -1 (usage printed). */
+/* Options of the service commands: [JOB] [--connect ADDRESS] [--token-file FILE] [--json] and, where the
+ * command's help names them, --state, --out, --file, --no-images, --label, --suite, --no-wait. Returns 0,
+ * 1 (help printed) or -1 (usage printed). */
 struct aa_service_args {
 	const char *connect, *job, *state, *out, *file, *suite;
-	bool json, no_images;
+	bool json, no_images, no_wait;
 	int label_count;           /* --label KEY=VALUE filters (aalab list) */
 	const char *labels[16];
 };
@@ -110,8 +155,8 @@ enum aa_watch_output { AA_WATCH_EVENTS, AA_WATCH_JSON, AA_WATCH_PROGRESS, AA_WAT
 int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output);
 /* cmd_get.c: downloads a job's files into dir (all, or results.json and report.html only). */
 int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const char *dir, bool images);
-/* cmd_get.c: the cost-vs-accuracy table from a results.json document. */
-void aa_print_results_table(json_t *results, FILE *out);
+/* A finished job's results.json, parsed; NULL when it has none (yet) or the request failed. */
+json_t *aa_job_results(struct aa_conn *c, const char *job);
 /* cmd_submit.c: `aalab run` through the daemon: submit, watch, download into dir, print. */
 /* Runs the job on aalabd and fetches its files into dir; the table names shown_dir (where they end up). */
 int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *shown_dir, bool images,
@@ -134,15 +179,18 @@ int aa_submit_payload(json_t *files, const char *scene, size_t scene_size, char 
 int aa_list_args(const char *cmd, const char *usage, int argc, char **argv, int max_names, bool *json,
 		 int *first);
 
-/* table.c: the cost-vs-accuracy table and progress display */
-void aa_print_table(const struct aa_job_result *r, FILE *out);
+/* progress.c: a progress bar on a terminal (renders done, time so far, an estimate of the time left), a
+ * line per tenth elsewhere: "aalab CMD: WHAT D/T (P%, ETA T)" each time the share done passes another
+ * tenth, so a long job says where it is in at most ten lines. aa_progress_finish erases the bar. */
 void aa_progress_update(int done, int total, const char *what);
-void aa_progress_finish(void);
-/* Progress where stderr is not a terminal (logs, CI, Slurm): "aalab CMD: WHAT D/T (P%)" each time the
- * share done passes another tenth, so a long job says where it is in at most ten lines. */
 void aa_progress_line(const char *cmd, int done, int total, const char *what);
+void aa_progress_finish(void);
+/* Seconds since the first update (0 before one). */
+double aa_progress_seconds(void);
+/* "12s", "3m05s", "1h02m". */
+void aa_format_duration(double seconds, char *out, size_t size);
 
-/* Splits a --methods value into method strings: commas separate methods, except that a "key=value"
+/* job_args.c: splits a --methods value into method strings: commas separate methods, except that a "key=value"
  * token without ':' continues the previous method's parameters ("fxaa:preset=12,subpix=0.5,none"). */
 int aa_split_methods(const char *text, char ***out, int *count);
 void aa_free_strings(char **v, int count);

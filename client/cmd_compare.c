@@ -11,30 +11,34 @@
 #include "compare/compare.h"
 
 const char aa_compare_help[] =
-	"usage: aalab compare BASE NEW [--fail-if GATE ...] [--json] [--junit FILE] [--markdown FILE]\n"
-	"                     [--allow-missing] [--raw-cost] [--connect ADDRESS]\n"
+	"usage: aalab compare BASE NEW [options]\n"
 	"\n"
-	"Compares two runs of the same job or suite, case by case and method by method: the change in PSNR,\n"
-	"SSIM, FLIP, flicker, GPU time (median and spread) and memory. BASE and NEW are results folders,\n"
-	"results.json files or aalabd job ids. Methods pair by label; a label found in one run only pairs\n"
-	"with the one method of the same name in the other, and the change of parameters is shown.\n"
+	"Compares two runs of the same job or suite, case by case and method by method: each run's verdict\n"
+	"(the cost-quality front), then PSNR, SSIM, FLIP, flicker and memory BASE -> NEW with their change,\n"
+	"then the GPU time's median BASE -> NEW with its raw change and, apart, the change the gates judge\n"
+	"(the p10 over the case's machine factor, with its 90% interval) and each gate's verdict. BASE and NEW\n"
+	"are results folders, results.json files or aalabd job ids. Methods pair by label; a label found in\n"
+	"one run only pairs with the one method of the same name in the other, and the change of parameters\n"
+	"is shown.\n"
 	"\n"
-	"  --fail-if GATE     a gate, METRIC OP CHANGE[%]: 'psnr < -0.1', 'gpu_ms > +10%', 'flip > +0.005'.\n"
-	"                     Metrics: psnr, ssim, flip, flicker, gpu_ms, cpu_ms, memory. Repeatable; replaces\n"
-	"                     the default set (psnr < -0.1, ssim < -0.001, flip > +0.005, flicker > +0.1,\n"
-	"                     gpu_ms > +50%, memory > +10%), which 'default' names. A time (gpu_ms, cpu_ms)\n"
-	"                     counts only when the 90% bootstrap interval of its change (p10 of the timed\n"
-	"                     renders, divided by the case's machine factor) is entirely past the gate\n"
-	"  --json             print the comparison as JSON instead of the table\n"
-	"  --junit FILE       write JUnit XML: one test case per case x method x gate\n"
-	"  --markdown FILE    write a markdown summary (for a merge-request comment)\n"
-	"  --allow-missing    compare the cases both runs have (default: runs must have the same cases)\n"
-	"  --raw-cost         judge times as measured: no machine factor (for a machine that runs nothing\n"
-	"                     else; then a slowdown shared by every method of a case counts too)\n"
-	"  --connect ADDRESS  the aalabd to fetch job ids from (default as for 'aalab get')\n"
+	"  --fail-if GATE          a gate, METRIC OP CHANGE[%]: 'psnr < -0.1', 'gpu_ms > +50%', 'flip > +0.005'.\n"
+	"                          Metrics: psnr, ssim, flip, flicker, gpu_ms, cpu_ms, memory. Repeatable;\n"
+	"                          replaces the default set (psnr < -0.1, ssim < -0.001, flip > +0.005,\n"
+	"                          flicker > +0.1, gpu_ms > +50%, memory > +10%), which 'default' names. A time\n"
+	"                          (gpu_ms, cpu_ms) counts only when the 90% bootstrap interval of its judged\n"
+	"                          change is entirely past the gate\n"
+	"  --json                  print the comparison as JSON instead of the table\n"
+	"  --junit FILE            also write JUnit XML: one test case per case x method x gate (default: none)\n"
+	"  --markdown FILE         also write a markdown summary, for a merge-request comment (default: none)\n"
+	"  --allow-missing         compare the cases both runs have (default: runs must have the same cases)\n"
+	"  --raw-cost              judge times as measured: no machine factor (for a machine that runs nothing\n"
+	"                          else; then a slowdown shared by every method of a case counts too)\n"
+	AA_CONNECT_OPTIONS_HELP
+	"                          (to fetch runs given as job ids)\n"
 	"\n"
-	"Exit status: 0 every gate held, 1 a gate tripped, 2 bad input (an unreadable run, a bad gate, runs\n"
-	"that do not share their cases). docs/compare.md has the rules.\n";
+	"Exit status: 0 every gate held, 1 a gate tripped, 2 bad input: an unreadable run, a bad gate, runs\n"
+	"that do not share their cases, or runs where nothing was judged (no method pairs, or no gate could\n"
+	"judge any), named. docs/compare.md has the rules.\n";
 
 /* A run: DIR/results.json, a results.json file, or a job's results.json fetched from aalabd. */
 static json_t *load_run(const char *side, const char *source, const char *connect)
@@ -96,12 +100,13 @@ static int write_output(const char *what, const char *file, const json_t *cmp,
 
 int cmd_compare(int argc, char **argv)
 {
-	enum { OPT_FAIL_IF = 256, OPT_JSON, OPT_JUNIT, OPT_MARKDOWN, OPT_ALLOW_MISSING, OPT_RAW_COST, OPT_CONNECT, OPT_HELP };
+	enum { OPT_FAIL_IF = 256, OPT_JSON, OPT_JUNIT, OPT_MARKDOWN, OPT_ALLOW_MISSING, OPT_RAW_COST, OPT_CONNECT, OPT_HELP,
+	       OPT_TOKEN_FILE };
 	static const struct option opts[] = {
 		{"fail-if", required_argument, 0, OPT_FAIL_IF}, {"json", no_argument, 0, OPT_JSON},
 		{"junit", required_argument, 0, OPT_JUNIT}, {"markdown", required_argument, 0, OPT_MARKDOWN},
 		{"allow-missing", no_argument, 0, OPT_ALLOW_MISSING}, {"raw-cost", no_argument, 0, OPT_RAW_COST},
-		{"connect", required_argument, 0, OPT_CONNECT},
+		{"connect", required_argument, 0, OPT_CONNECT}, {"token-file", required_argument, 0, OPT_TOKEN_FILE},
 		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	struct aa_compare_options o = {0};
@@ -133,6 +138,7 @@ int cmd_compare(int argc, char **argv)
 		case OPT_ALLOW_MISSING: o.allow_missing = true; break;
 		case OPT_RAW_COST: o.raw_cost = true; break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
 		case OPT_HELP: fputs(aa_compare_help, stdout); return AA_EXIT_OK;
 		default: fputs(aa_compare_help, stderr); return AA_EXIT_USAGE;
 		}

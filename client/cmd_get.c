@@ -8,12 +8,19 @@
 
 #include "client.h"
 
-static const char get_help[] =
-	"usage: aalab get JOB [--out DIR] [--file NAME] [--no-images] [--connect ADDRESS] [--json]\n"
+const char aa_get_help[] =
+	"usage: aalab get JOB [options]\n"
 	"\n"
-	"Downloads a finished job's results.json, report.html and frame images into DIR (default\n"
-	"results/job-JOB). --file NAME (results.json, report.html, frames/METHOD/NNNN.png, ...) writes that\n"
-	"one file to standard output instead. --json prints results.json to standard output.\n";
+	"Downloads a finished job's results.json, report.html and frame images from aalabd.\n"
+	"\n"
+	"  --out DIR               where they go (default results/job-JOB)\n"
+	"  --file NAME             write only this file to standard output: results.json, report.html,\n"
+	"                          frames/METHOD/NNNN.png, ... (default: every file, into DIR)\n"
+	"  --no-images             only results.json and report.html, no frame images\n"
+	"  --json                  print results.json to standard output instead\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 downloaded, 1 the daemon could not be reached or a file not written, 2 unknown job.\n";
 
 static json_t *request_file(struct aa_conn *c, const char *job, const char *file, char **data, size_t *size)
 {
@@ -80,53 +87,25 @@ int aa_get_job_files(struct aa_conn *c, const char *cmd, const char *job, const 
 	return status;
 }
 
-void aa_print_results_table(json_t *results, FILE *out)
+json_t *aa_job_results(struct aa_conn *c, const char *job)
 {
-	size_t i;
-	json_t *m;
-	/* GPU ms: the median over every timed render, its 10th-90th percentile range and their count */
-	fprintf(out, "| method | GPU ms/frame | p10-p90 ms | n | MB | PSNR dB | SSIM | %% px over | alpha test |\n"
-		     "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
-	json_array_foreach(json_object_get(results, "methods"), i, m) {
-		json_t *metrics = json_object_get(m, "metrics");
-		json_t *psnr = json_object_get(json_object_get(metrics, "psnr"), "mean");
-		char psnr_text[32];
-		if (json_is_number(psnr))
-			snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(psnr));
-		else
-			snprintf(psnr_text, sizeof psnr_text, "identical");
-		json_t *gpu = json_object_get(m, "gpu_ms");
-		const char *alpha = json_string_value(json_object_get(m, "alpha_rule"));
-		/* idiff's count as a share of the pixels, with its threshold (results.json metrics.over_threshold) */
-		json_t *over = json_object_get(metrics, "over_threshold");
-		char over_text[48] = "-";
-		if (json_is_number(json_object_get(over, "mean_share")))
-			snprintf(over_text, sizeof over_text, "%.2f (>%g)",
-				 100.0 * json_number_value(json_object_get(over, "mean_share")),
-				 json_number_value(json_object_get(over, "threshold")));
-		fprintf(out, "| %s | %.1f | %.1f-%.1f | %lld | %.1f | %s | %.4f | %s | %s |\n",
-			json_string_value(json_object_get(m, "label")), json_number_value(json_object_get(gpu, "median")),
-			json_number_value(json_object_get(gpu, "p10")), json_number_value(json_object_get(gpu, "p90")),
-			(long long)json_integer_value(json_object_get(gpu, "n")),
-			json_number_value(json_object_get(m, "memory_bytes")) / 1048576.0, psnr_text,
-			json_number_value(json_object_get(json_object_get(metrics, "ssim"), "mean")), over_text,
-			alpha ? alpha : "-");
-	}
-	json_t *warnings = json_object_get(results, "warnings"), *w;
-	if (json_array_size(warnings))
-		fprintf(out, "\nwarnings (what the scene draws differently from its files):\n");
-	json_array_foreach(warnings, i, w)
-		fprintf(out, "  %s\n", json_string_value(w));
+	char *data = NULL;
+	size_t size = 0;
+	json_t *r = request_file(c, job, "results.json", &data, &size);
+	json_t *doc = json_is_true(json_object_get(r, "ok")) && data ? json_loadb(data, size, 0, NULL) : NULL;
+	json_decref(r);
+	free(data);
+	return doc;
 }
 
 int cmd_get(int argc, char **argv)
 {
 	struct aa_service_args a;
-	int rc = aa_service_args("get", get_help, argc, argv, &a);
+	int rc = aa_service_args("get", aa_get_help, argc, argv, &a);
 	if (rc)
 		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
 	if (!a.job) {
-		fputs(get_help, stderr);
+		fputs(aa_get_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;

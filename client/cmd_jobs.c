@@ -7,18 +7,24 @@
 #include "client.h"
 #include "run/farm.h"
 
-static const char list_help[] =
-	"usage: aalab list [--state queued|running|done|failed|cancelled] [--label KEY=VALUE ...] [--suite NAME]\n"
-	"                  [--connect ADDRESS] [--json]\n"
+const char aa_list_help[] =
+	"usage: aalab list [options]\n"
 	"\n"
-	"Lists the jobs aalabd holds: id, state, progress, scene (or suite), labels, the verdict against a\n"
-	"baseline and methods. --label keeps jobs that have the label (repeatable: all of them); --suite keeps\n"
-	"the jobs of one suite.\n";
+	"Lists the jobs aalabd holds, oldest first: id, state, renders done, scene (or suite), labels, the\n"
+	"comparison with its baseline (held or tripped) and methods.\n"
+	"\n"
+	"  --state STATE           only jobs in STATE: queued, running, done, failed or cancelled (default: all)\n"
+	"  --label KEY=VALUE       only jobs with this label; repeatable, all of them (default: any labels)\n"
+	"  --suite NAME            only the jobs of suite NAME (default: any)\n"
+	"  --json                  print the jobs as JSON instead\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 listed, 1 the daemon could not be reached, 2 bad arguments.\n";
 
 int cmd_jobs(int argc, char **argv)
 {
 	struct aa_service_args a;
-	int rc = aa_service_args("list", list_help, argc, argv, &a);
+	int rc = aa_service_args("list", aa_list_help, argc, argv, &a);
 	if (rc)
 		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
 	if (a.job) {
@@ -62,7 +68,7 @@ int cmd_jobs(int argc, char **argv)
 	} else if (status == AA_EXIT_OK) {
 		size_t i;
 		json_t *job;
-		printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", "ID", "STATE", "DONE", "SCENE", "LABELS", "VERDICT",
+		printf("%-8s %-10s %-9s %-22s %-28s %-9s %s\n", "ID", "STATE", "DONE", "SCENE", "LABELS", "BASELINE",
 		       "METHODS");
 		json_array_foreach(json_object_get(r, "jobs"), i, job) {
 			json_t *spec = json_object_get(job, "spec"), *m;

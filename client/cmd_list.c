@@ -123,8 +123,10 @@ int cmd_scenes(int argc, char **argv)
 			json_object_set_new(o, "objects", json_integer(sum.object_count));
 			json_object_set_new(o, "paths", paths);
 			if (!json) {
-				printf("%-16s %4d objects  paths: default, static%s%s\n", names[i], sum.object_count,
-				       sum.path_count ? ", " : "", sum.path_count ? sum.paths[0] : "");
+				printf("%-16s %4d objects  paths: default, static", names[i], sum.object_count);
+				for (int p = 0; p < sum.path_count; p++) /* every path the scene defines */
+					printf(", %s", sum.paths[p]);
+				putchar('\n');
 				if (sum.description[0])
 					printf("%16s %s\n", "", sum.description);
 			}
@@ -171,7 +173,9 @@ static json_t *named_methods(json_t *all, int argc, char **argv)
 	for (int i = 1; i < argc; i++) {
 		if (argv[i][0] == '-' || has_method(all, argv[i]))
 			continue;
-		fprintf(stderr, "aalab methods: unknown method '%s' (methods:", argv[i]);
+		char mean[96];
+		aa_method_suggest(argv[i], mean, sizeof mean);
+		fprintf(stderr, "aalab methods: unknown method '%s'%s (methods:", argv[i], mean);
 		json_array_foreach(all, k, m)
 			fprintf(stderr, "%s %s", k ? "," : "", json_string_value(json_object_get(m, "name")));
 		fputs(")\n", stderr);

@@ -23,11 +23,11 @@ const char aa_merge_help[] =
 	"warm-up), each given once; a folder without results.json is a shard that did not finish, and merge\n"
 	"names the frames that are missing.\n"
 	"\n"
-	"  --out DIR     where the merged results go (refused if DIR holds something that is not an aalab\n"
-	"                result; an earlier result only with --force)\n"
-	"  --force       replace the earlier aalab result in DIR\n"
-	"  --json        print the merged results.json instead of the table\n"
-	"  --quiet       no notes on standard error (border frames without images)\n"
+	"  --out DIR               where the merged results go (required; refused if DIR holds something\n"
+	"                          that is not an aalab result; an earlier result only with --force)\n"
+	"  --force                 replace the earlier aalab result in DIR\n"
+	"  --json                  print the merged results.json instead of the tables\n"
+	"  --quiet                 no notes on standard error (border frames without images)\n"
 	"\n"
 	"Exit status: 0 merged, 1 writing failed, 2 bad arguments, missing, duplicated or foreign shards.\n";
 
@@ -83,21 +83,17 @@ int cmd_merge(int argc, char **argv)
 	}
 	if (status != AA_EXIT_OK) {
 		aa_out_dir_discard(&od);
-	} else if (print_json || m.result->spec.is_suite) {
+	} else {
 		json_t *j = aa_suite_results_to_json(m.result);
 		if (print_json) {
 			json_dumpf(j, stdout, JSON_INDENT(2));
 			fputc('\n', stdout);
 		} else {
-			aa_print_suite_table(j, stdout);
+			aa_print_results(j, stdout);
+			printf("\nmerged %d shards\nresults: %s/results.json\nreport:  %s/report.html\n", m.shard_count,
+			       od.final, od.final);
 		}
 		json_decref(j);
-	}
-	if (status == AA_EXIT_OK && !print_json) {
-		if (!m.result->spec.is_suite)
-			aa_print_table(m.result->cases[0], stdout);
-		printf("\nmerged %d shards\nresults: %s/results.json\nreport:  %s/report.html\n", m.shard_count,
-		       od.final, od.final);
 	}
 	aa_shard_merge_free(&m);
 	return status;

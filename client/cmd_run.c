@@ -26,25 +26,10 @@ const char aa_run_help[] =
 	"Renders every frame of a camera path with each AA method and with a supersampled reference, and\n"
 	"compares them. Flags override the fields of JOB.json (docs/job-format.md). A job file may be a suite,\n"
 	"a matrix of scenes, paths and sizes; a suite is also found by name ('aalab suites' lists them).\n"
+	"Prints the verdict first (the methods on the cost-quality front, ties, what beats each other method\n"
+	"and by how much), then the table, then the warnings, each with what to do.\n"
 	"\n"
-	"  --scene NAME|FILE       scene name (see 'aalab scenes') or scene file (default thin-wires)\n"
-	"  --path NAME             camera path: default, static, or one the scene defines (default default)\n"
-	"  --methods LIST          comma-separated methods, e.g. none,ssaa:16 (default none,ssaa:16;\n"
-	"                          see 'aalab methods')\n"
-	"  --frames N              frames to render (default 1)\n"
-	"  --first-frame N         frame index on the path to start at (default 0)\n"
-	"  --size WxH              image size (default 640x360)\n"
-	"  --reference-samples N   samples of the accumulated reference, even (default 64); auto: doubled per\n"
-	"                          frame until the N/2-vs-N PSNR reaches 45 dB (cap 256)\n"
-	"  --repeat N              render and time each method's frame N times, the first scored, for\n"
-	"                          stable costs on a noisy machine (default 1; job field timing.repeat)\n"
-	"  --label KEY=VALUE       name the run for a build farm (commit, branch, build_url, machine);\n"
-	"                          repeatable, stored in results.json (job field labels)\n"
-	"  --over-threshold X      count the pixels where any of R,G,B differs from the reference by more\n"
-	"                          than X of full scale, as idiff does (0..1, default 0.01; job field\n"
-	"                          over_threshold); results.json and the table's %px column\n"
-	"  --baseline JOB          aalabd only: compare the finished job with JOB, a job id or\n"
-	"                          latest:KEY=VALUE (job field baseline)\n"
+	AA_JOB_OPTIONS_HELP
 	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS); written to a\n"
 	"                          folder beside it and renamed when complete. A non-empty DIR that is not\n"
 	"                          an aalab result is refused; an earlier aalab result only with --force\n"
@@ -52,7 +37,7 @@ const char aa_run_help[] =
 	"  --shard I/N             render shard I (0 to N-1) of N: a contiguous run of the frames, after the\n"
 	"                          warm-up frames its temporal methods need (job field shard.warmup), or of\n"
 	"                          a suite's whole cases; in this process. 'aalab merge' joins the shards\n"
-	"                          (docs/farm.md)\n"
+	"                          (docs/farm.md; default: the whole job)\n"
 	"  --device SEL            Vulkan device index or name substring (default $AALAB_DEVICE or the first)\n"
 	"  --reference-cache DIR|off  the store of reference frames: each frame's reference is looked up by\n"
 	"                          the hash of what decides its pixels and rendered only when it is not\n"
@@ -72,12 +57,13 @@ const char aa_run_help[] =
 	"                          targets, histories, edge and blend targets) and count their NaN/Inf\n"
 	"                          texels: results.json frames[].intermediates, the finite verdict (job\n"
 	"                          field debug_targets; slower)\n"
-	"  --json                  print results.json to standard output instead of the table\n"
-	"  --quiet                 no progress (a bar on a terminal; otherwise a line on stderr each time\n"
-	"                          another tenth of the renders is done)\n"
+	"  --json                  print results.json to standard output instead of the tables\n"
+	"  --quiet                 no progress (a bar with an ETA on a terminal; otherwise a line on stderr\n"
+	"                          each time another tenth of the renders is done)\n"
 	"  --local                 run in this process even when aalabd is running\n"
-	"  --connect ADDRESS       run on this aalabd (unix:PATH or tcp:HOST:PORT); without it and without\n"
-	"                          --local, a daemon on the default socket is used when one answers\n"
+	AA_CONNECT_OPTIONS_HELP
+	"                          (without --connect and --local, a daemon on the default socket is used\n"
+	"                          when one answers)\n"
 	"\n"
 	"Exit status: 0 done, 1 the job failed, 2 bad arguments or job (the message names the field).\n";
 
@@ -146,7 +132,8 @@ static int make_default_dir(const char *scene, char *out, size_t size)
 int cmd_run(int argc, char **argv)
 {
 	enum { OPT_OUT = 256, OPT_DEVICE, OPT_NO_IMAGES, OPT_JSON, OPT_QUIET, OPT_LOCAL, OPT_CONNECT, OPT_HELP, OPT_FORCE, OPT_SHARD, OPT_EXR,
-	       OPT_NO_VIEWER, OPT_DEBUG_TARGETS, OPT_REFERENCE_CACHE, OPT_REFERENCE_CACHE_SIZE, OPT_EXPLAIN_KEY };
+	       OPT_NO_VIEWER, OPT_DEBUG_TARGETS, OPT_REFERENCE_CACHE, OPT_REFERENCE_CACHE_SIZE, OPT_EXPLAIN_KEY,
+	       OPT_TOKEN_FILE };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"out", required_argument, 0, OPT_OUT}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"device", required_argument, 0, OPT_DEVICE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
@@ -157,7 +144,8 @@ int cmd_run(int argc, char **argv)
 		{"debug-targets", no_argument, 0, OPT_DEBUG_TARGETS},
 		{"reference-cache", required_argument, 0, OPT_REFERENCE_CACHE},
 		{"reference-cache-size", required_argument, 0, OPT_REFERENCE_CACHE_SIZE},
-		{"explain-key", no_argument, 0, OPT_EXPLAIN_KEY}, {0, 0, 0, 0},
+		{"explain-key", no_argument, 0, OPT_EXPLAIN_KEY}, {"token-file", required_argument, 0, OPT_TOKEN_FILE},
+		{0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
 	const char *out_dir = NULL, *device = NULL, *connect = NULL, *shard_text = NULL, *cache_given = NULL;
@@ -183,6 +171,7 @@ int cmd_run(int argc, char **argv)
 		case OPT_QUIET: quiet = true; break;
 		case OPT_LOCAL: local = true; break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
 		case OPT_FORCE: force = true; break;
 		case OPT_SHARD: shard_text = optarg; break;
 		case OPT_EXR: exr = true; break;
@@ -372,23 +361,12 @@ int cmd_run(int argc, char **argv)
 		json_dumpf(j, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 		json_decref(j);
-	} else if (spec.is_suite) {
+	} else {
+		/* what the results folder says, printed as a run through aalabd or 'aalab get' prints it */
 		json_t *j = aa_suite_results_to_json(result);
-		aa_print_suite_table(j, stdout);
+		aa_print_results(j, stdout);
 		/* a verdict the docs say must hold that fails is a failed run (the results are kept) */
 		const int failed = aa_print_verdict_table(j, stdout);
-		json_decref(j);
-		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
-		if (failed) {
-			fflush(stdout);
-			fprintf(stderr, "aalab run: %d verdict%s failed (docs/hard-cases.md)\n", failed,
-				failed == 1 ? "" : "s");
-			verdicts_failed = true;
-		}
-	} else {
-		aa_print_table(result->cases[0], stdout);
-		json_t *j = spec.verdicts ? aa_suite_results_to_json(result) : NULL;
-		const int failed = j ? aa_print_verdict_table(j, stdout) : 0;
 		json_decref(j);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", dir, dir);
 		if (failed) {

@@ -5,11 +5,18 @@
 
 #include "client.h"
 
-static const char status_help[] =
-	"usage: aalab status JOB [--connect ADDRESS] [--json]\n"
+const char aa_status_help[] =
+	"usage: aalab status JOB [options]\n"
 	"\n"
-	"Shows a job's state and progress; once it is done, each method's GPU ms (median, p10-p90, n), memory,\n"
-	"PSNR, SSIM and alpha rule.\n";
+	"Shows a job on aalabd: once it is done, its verdict first (the methods on the cost-quality front,\n"
+	"ties, what beats each other method); then its state and renders done, scene or suite, labels, the\n"
+	"comparison with its baseline (held or tripped), each method's GPU ms (median, p10-p90, n), memory,\n"
+	"PSNR, SSIM and alpha rule, and last the warnings, each with what to do.\n"
+	"\n"
+	"  --json                  print the daemon's record of the job as JSON instead\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 shown, 1 the daemon could not be reached, 2 unknown job.\n";
 
 /* A string field, or fallback when it is missing. */
 static const char *text_of(json_t *o, const char *key, const char *fallback)
@@ -50,11 +57,11 @@ static void print_summary(json_t *summary)
 int cmd_status(int argc, char **argv)
 {
 	struct aa_service_args a;
-	int rc = aa_service_args("status", status_help, argc, argv, &a);
+	int rc = aa_service_args("status", aa_status_help, argc, argv, &a);
 	if (rc)
 		return rc > 0 ? AA_EXIT_OK : AA_EXIT_USAGE;
 	if (!a.job) {
-		fputs(status_help, stderr);
+		fputs(aa_status_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;
@@ -73,6 +80,10 @@ int cmd_status(int argc, char **argv)
 			json_dumpf(job, stdout, JSON_INDENT(2));
 			fputc('\n', stdout);
 		} else {
+			/* a finished job: its verdict first, as results.json says it; its warnings last */
+			json_t *results = !strcmp(text_of(job, "state", ""), "done") ? aa_job_results(conn, a.job) : NULL;
+			if (results)
+				aa_print_verdict(results, stdout);
 			json_t *spec = json_object_get(job, "spec"), *e = json_object_get(job, "error");
 			printf("job %s: %s, %lld of %lld renders done\n", json_string_value(json_object_get(job, "id")),
 			       json_string_value(json_object_get(job, "state")), json_integer_value(json_object_get(job, "done")),
@@ -88,7 +99,7 @@ int cmd_status(int argc, char **argv)
 			json_t *v, *cmp = json_object_get(job, "compare");
 			json_object_foreach(json_object_get(spec, "labels"), key, v)
 				printf("  label %s=%s\n", key, json_string_value(v));
-			if (cmp) { /* the verdict against the job's baseline */
+			if (cmp) { /* the comparison with the job's baseline: its gates held or tripped */
 				json_t *counts = json_object_get(cmp, "counts"), *t;
 				size_t k;
 				printf("  baseline %s (job %s): %s", json_string_value(json_object_get(cmp, "baseline")),
@@ -108,6 +119,9 @@ int cmd_status(int argc, char **argv)
 			if (e)
 				printf("  error: %s\n", json_string_value(json_object_get(e, "message")));
 			print_summary(json_object_get(job, "summary"));
+			if (results)
+				aa_print_warnings(results, stdout);
+			json_decref(results);
 		}
 	}
 	json_decref(r);

@@ -8,17 +8,25 @@
 
 #include "client.h"
 
-static const char submit_help[] =
-	"usage: aalab submit [JOB.json] [--scene NAME] [--path PATH] [--methods LIST] [--frames N]\n"
-	"                    [--first-frame N] [--size WxH] [--reference-samples N] [--repeat N]\n"
-	"                    [--over-threshold X] [--scene-file FILE]\n"
-	"                    [--watch] [--connect ADDRESS] [--json] [--quiet]\n"
+const char aa_submit_help[] =
+	"usage: aalab submit [JOB.json|SUITE] [options]\n"
 	"\n"
-	"Queues a job on aalabd and prints its id. --scene-file sends your own scene file with the job.\n"
-	"--watch follows the job until it ends, as aalab watch does after the id: a progress bar on a\n"
-	"terminal, one line per event otherwise, JSON lines with --json, nothing with --quiet; the exit\n"
-	"status is then the job's (0 done, 1 failed or cancelled). ADDRESS is unix:PATH or tcp:HOST:PORT\n"
-	"(default $AALAB_CONNECT, then $XDG_RUNTIME_DIR/aalabd.sock, then /run/aalabd/aalabd.sock).\n";
+	"Queues a job on aalabd and prints its id. A scene given as a file (--scene ./my.json, or a job\n"
+	"file's scene) is sent with the job, as --scene-file sends one; the daemon knows scenes by name.\n"
+	"\n"
+	AA_JOB_OPTIONS_HELP
+	"  --scene-file FILE       send this scene file with the job (default: none; the job's --scene when\n"
+	"                          that is a file)\n"
+	"  --watch                 follow the job until it ends, as aalab watch does after the id: a progress\n"
+	"                          bar on a terminal, one line per event otherwise, then a last line with the\n"
+	"                          state, wall time, where the results are and the verdict; the exit status\n"
+	"                          is then the job's (0 done, 1 failed or cancelled)\n"
+	"  --json                  print the reply (and with --watch the events) as JSON lines\n"
+	"  --quiet                 with --watch, print nothing but the id\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
+	"Exit status: 0 queued (with --watch: done), 1 the daemon could not be reached (with --watch: the job\n"
+	"failed or was cancelled), 2 bad arguments or job.\n";
 
 /* Submits and returns the reply (NULL if the connection failed, or the payload could not be made). With
  * user methods in the job, their files go with it (and are compiled here first). */
@@ -68,12 +76,12 @@ static char *read_file(const char *path, size_t *size)
 
 int cmd_submit(int argc, char **argv)
 {
-	enum { OPT_SCENE_FILE = 256, OPT_WATCH, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP };
+	enum { OPT_SCENE_FILE = 256, OPT_WATCH, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP, OPT_TOKEN_FILE };
 	static const struct option opts[] = {
 		AA_JOB_LONG_OPTIONS, {"scene-file", required_argument, 0, OPT_SCENE_FILE},
 		{"watch", no_argument, 0, OPT_WATCH}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
-		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+		{"token-file", required_argument, 0, OPT_TOKEN_FILE}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	json_t *overrides = json_object();
 	const char *connect = NULL, *scene_file = NULL;
@@ -91,17 +99,24 @@ int cmd_submit(int argc, char **argv)
 		case OPT_SCENE_FILE: scene_file = optarg; break;
 		case OPT_WATCH: watch = true; break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
 		case OPT_JSON: json = true; break;
 		case OPT_QUIET: quiet = true; break;
-		case OPT_HELP: fputs(submit_help, stdout); status = AA_EXIT_OK; goto out;
-		default: fputs(submit_help, stderr); goto out;
+		case OPT_HELP: fputs(aa_submit_help, stdout); status = AA_EXIT_OK; goto out;
+		default: fputs(aa_submit_help, stderr); goto out;
 		}
 	}
 	json_t *job = aa_job_build("submit", argc, argv, optind, overrides);
 	if (!job)
 		goto out;
+	/* a scene given as a file (--scene ./my.json, or a job file's "scene") goes with the job, as
+	 * --scene-file sends it: the daemon takes scene names only */
+	const char *job_scene = json_string_value(json_object_get(job, "scene"));
+	if (!scene_file && job_scene && (strchr(job_scene, '/') || strstr(job_scene, ".json")))
+		scene_file = job_scene;
 	if (scene_file && !(scene = read_file(scene_file, &scene_size))) {
-		fprintf(stderr, "aalab submit: scene-file: cannot read %s (at most 16 MB)\n", scene_file);
+		fprintf(stderr, "aalab submit: %s: cannot read %s (at most 16 MB)\n",
+			scene_file == job_scene ? "scene" : "scene-file", scene_file);
 		json_decref(job);
 		goto out;
 	}
@@ -171,7 +186,8 @@ int aa_run_remote(struct aa_conn *c, json_t *job, const char *dir, const char *s
 		json_dumpf(results, stdout, JSON_INDENT(2));
 		fputc('\n', stdout);
 	} else {
-		aa_print_results_any(results, stdout);
+		aa_print_results(results, stdout);
+		aa_print_verdict_table(results, stdout);
 		printf("\nresults: %s/results.json\nreport:  %s/report.html\n", shown_dir, shown_dir);
 	}
 	json_decref(results);

@@ -6,11 +6,18 @@
 
 #include "client.h"
 
-static const char watch_help[] =
-	"usage: aalab watch JOB [--after SEQ] [--connect ADDRESS] [--json] [--quiet]\n"
+const char aa_watch_help[] =
+	"usage: aalab watch JOB [options]\n"
 	"\n"
-	"Streams a job's events until it ends: a progress bar on a terminal, one line per frame otherwise,\n"
-	"or the events themselves as JSON lines with --json. --after SEQ resumes after event SEQ.\n"
+	"Follows a job on aalabd until it ends: a progress bar on a terminal (renders done, time so far and\n"
+	"an ETA), one line per event otherwise, then a last line with the job's state, its wall time, where\n"
+	"its results are and the verdict.\n"
+	"\n"
+	"  --after SEQ             resume after event SEQ (default 0: from the start)\n"
+	"  --json                  print the events as JSON lines instead\n"
+	"  --quiet                 print nothing; only the exit status tells\n"
+	AA_CONNECT_OPTIONS_HELP
+	"\n"
 	"Exit status: 0 the job is done, 1 it failed or was cancelled, 2 bad arguments or unknown job.\n";
 
 static void print_number(const char *what, json_t *v, const char *unit)
@@ -57,6 +64,40 @@ static void print_event(json_t *ev)
 	}
 }
 
+/* The watch's last line, where a person looks when it ends: the job's state, its wall time, where its
+ * results are and the verdict ("job 000003 done in 12s; results: aalab get 000003; verdict: front: ..."). */
+static void print_final_line(struct aa_conn *c, const char *job)
+{
+	json_t *msg = json_pack("{ss ss}", "op", "status", "job", job);
+	json_t *r = aa_conn_request(c, msg, NULL, NULL);
+	json_decref(msg);
+	json_t *j = json_object_get(r, "job");
+	const char *state = json_string_value(json_object_get(j, "state"));
+	if (!state) {
+		json_decref(r);
+		return;
+	}
+	json_t *started = json_object_get(j, "started_at"), *finished = json_object_get(j, "finished_at");
+	char wall[32] = "";
+	if (json_is_number(started) && json_is_number(finished))
+		aa_format_duration(json_number_value(finished) - json_number_value(started), wall, sizeof wall);
+	printf("job %s %s%s%s", job, state, wall[0] ? " in " : "", wall);
+	if (!strcmp(state, "done")) {
+		json_t *results = aa_job_results(c, job);
+		char headline[1024] = "";
+		if (results)
+			aa_verdict_headline(results, headline, sizeof headline);
+		printf("; results: aalab get %s (results.json, report.html)%s%s", job, headline[0] ? "; verdict: " : "",
+		       headline);
+		json_decref(results);
+	} else if (json_object_get(j, "error")) {
+		printf(": %s", json_string_value(json_object_get(json_object_get(j, "error"), "message")));
+	}
+	putchar('\n');
+	fflush(stdout);
+	json_decref(r);
+}
+
 int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after, enum aa_watch_output output)
 {
 	json_t *msg = json_pack("{ss ss sI}", "op", "watch", "job", job, "after", (json_int_t)after);
@@ -70,6 +111,7 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 	const bool tty = isatty(STDERR_FILENO) && !quiet && !json;
 	const char *last = "";
 	char last_buf[32] = "";
+	int last_total = 0;
 	for (;;) {
 		json_t *ev = aa_conn_read(c, NULL, NULL);
 		if (!ev) {
@@ -94,6 +136,14 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		} else if (tty || output == AA_WATCH_PROGRESS) {
 			json_t *done = json_object_get(ev, "done");
 			int d = (int)json_integer_value(done), t = (int)json_integer_value(json_object_get(ev, "total"));
+			if (done)
+				last_total = t;
+			/* the frames' events count the renders so far, re-timings included, but none follows the
+			 * last re-timings: the end of the job is all of them */
+			if (!done && !strcmp(type, "job_finished") && last_total > 0) {
+				done = ev;
+				d = t = last_total;
+			}
 			if (done && tty)
 				aa_progress_update(d, t, json_string_value(json_object_get(ev, "method")));
 			else if (done)
@@ -114,6 +164,8 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 		json_decref(ev);
 	}
 	aa_progress_finish();
+	if (output == AA_WATCH_EVENTS)
+		print_final_line(c, job);
 	if (!strcmp(last, "job_finished"))
 		return AA_EXIT_OK;
 	if (!strcmp(last, "job_cancelled") && !json)
@@ -123,11 +175,11 @@ int aa_watch_job(struct aa_conn *c, const char *cmd, const char *job, long after
 
 int cmd_watch(int argc, char **argv)
 {
-	enum { OPT_AFTER = 256, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP };
+	enum { OPT_AFTER = 256, OPT_CONNECT, OPT_JSON, OPT_QUIET, OPT_HELP, OPT_TOKEN_FILE };
 	static const struct option opts[] = {
 		{"after", required_argument, 0, OPT_AFTER}, {"connect", required_argument, 0, OPT_CONNECT},
 		{"json", no_argument, 0, OPT_JSON}, {"quiet", no_argument, 0, OPT_QUIET},
-		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
+		{"token-file", required_argument, 0, OPT_TOKEN_FILE}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	const char *connect = NULL;
 	long after = 0;
@@ -145,14 +197,15 @@ int cmd_watch(int argc, char **argv)
 			}
 			break;
 		case OPT_CONNECT: connect = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
 		case OPT_JSON: json = true; break;
 		case OPT_QUIET: quiet = true; break;
-		case OPT_HELP: fputs(watch_help, stdout); return AA_EXIT_OK;
-		default: fputs(watch_help, stderr); return AA_EXIT_USAGE;
+		case OPT_HELP: fputs(aa_watch_help, stdout); return AA_EXIT_OK;
+		default: fputs(aa_watch_help, stderr); return AA_EXIT_USAGE;
 		}
 	}
 	if (optind + 1 != argc) {
-		fputs(watch_help, stderr);
+		fputs(aa_watch_help, stderr);
 		return AA_EXIT_USAGE;
 	}
 	struct aa_conn *conn;

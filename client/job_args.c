@@ -196,3 +196,40 @@ json_t *aa_job_build(const char *cmd, int argc, char **argv, int first, json_t *
 	json_object_update(job, overrides);
 	return job;
 }
+void aa_free_strings(char **v, int count)
+{
+	for (int i = 0; i < count; i++)
+		free(v[i]);
+	free(v);
+}
+
+int aa_split_methods(const char *text, char ***out, int *count)
+{
+	char *copy = strdup(text);
+	char **list = calloc(strlen(text) + 1, sizeof *list);
+	int n = 0;
+	if (!copy || !list) {
+		free(copy);
+		free(list);
+		return -1;
+	}
+	char *save = NULL;
+	for (char *tok = strtok_r(copy, ", \t", &save); tok; tok = strtok_r(NULL, ", \t", &save)) {
+		bool continues = n > 0 && strchr(tok, '=') && !strchr(tok, ':');
+		if (continues) {
+			size_t len = strlen(list[n - 1]) + strlen(tok) + 2;
+			char *joined = malloc(len);
+			if (!joined)
+				break;
+			snprintf(joined, len, "%s,%s", list[n - 1], tok);
+			free(list[n - 1]);
+			list[n - 1] = joined;
+		} else {
+			list[n++] = strdup(tok);
+		}
+	}
+	free(copy);
+	*out = list;
+	*count = n;
+	return 0;
+}

@@ -76,20 +76,48 @@ static int connect_tcp(const char *host_port, char *err, size_t err_size)
 	return fd;
 }
 
-/* The token for TCP: $AALAB_TOKEN, or the first line of $AALAB_TOKEN_FILE. */
-static void read_token(char *out, size_t size)
+static const char *token_file_option; /* --token-file, over the environment */
+
+void aa_conn_set_token_file(const char *path)
 {
-	const char *t = getenv("AALAB_TOKEN"), *file = getenv("AALAB_TOKEN_FILE");
+	token_file_option = path;
+}
+
+/* The token for TCP: the first line of --token-file's file, else $AALAB_TOKEN, else the first line of
+ * $AALAB_TOKEN_FILE; *source says which (for an error that tells where a refused token came from). */
+static void read_token(char *out, size_t size, char *source, size_t source_size)
+{
+	const char *t = getenv("AALAB_TOKEN"), *file = token_file_option ? token_file_option : getenv("AALAB_TOKEN_FILE");
 	out[0] = 0;
-	if (t) {
+	source[0] = 0;
+	if (t && !token_file_option) {
 		snprintf(out, size, "%s", t);
+		snprintf(source, source_size, "$AALAB_TOKEN");
 	} else if (file) {
 		FILE *f = fopen(file, "r");
 		if (f && fgets(out, (int)size, f))
 			out[strcspn(out, "\r\n")] = 0;
 		if (f)
 			fclose(f);
+		snprintf(source, source_size, "%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file);
 	}
+}
+
+/* What a refused hello means, and what to do: a TCP daemon wants its token, missing or wrong. */
+static void hello_error(json_t *r, const char *token, const char *source, char *err, size_t err_size)
+{
+	json_t *e = r ? json_object_get(r, "error") : NULL;
+	const char *code = json_string_value(json_object_get(e, "code"));
+	if (code && !strcmp(code, "unauthorized") && !token[0])
+		snprintf(err, err_size, "hello: this aalabd wants its bearer token on TCP and none was sent%s%s: set "
+			 "AALAB_TOKEN, or AALAB_TOKEN_FILE or --token-file to a file holding it (the daemon's "
+			 "token-file)", source[0] ? ": " : "", source[0] ? source : "");
+	else if (code && !strcmp(code, "unauthorized"))
+		snprintf(err, err_size, "hello: this aalabd refused the token from %s: it is not the one in the "
+			 "daemon's token-file; set AALAB_TOKEN, or AALAB_TOKEN_FILE or --token-file to a file holding "
+			 "that one", source);
+	else
+		snprintf(err, err_size, "hello: %s", e ? json_string_value(json_object_get(e, "message")) : "no reply");
 }
 
 int aa_conn_open(const char *address, struct aa_conn **out, char *err, size_t err_size)
@@ -111,16 +139,15 @@ int aa_conn_open(const char *address, struct aa_conn **out, char *err, size_t er
 		return -1;
 	}
 	c->fd = fd;
-	char token[256];
-	read_token(token, sizeof token);
+	char token[256], source[1200];
+	read_token(token, sizeof token, source, sizeof source);
 	json_t *hello = json_pack("{ss si ss}", "op", "hello", "version", 1, "client", "aalab " PACKAGE_VERSION);
 	if (tcp)
 		json_object_set_new(hello, "token", json_string(token));
 	json_t *r = aa_conn_request(c, hello, NULL, NULL);
 	json_decref(hello);
 	if (!r || !json_is_true(json_object_get(r, "ok"))) {
-		json_t *e = r ? json_object_get(r, "error") : NULL;
-		snprintf(err, err_size, "hello: %s", e ? json_string_value(json_object_get(e, "message")) : "no reply");
+		hello_error(r, token, source, err, err_size);
 		json_decref(r);
 		aa_conn_close(c);
 		return -1;
@@ -255,12 +282,14 @@ int aa_reply_status(const char *cmd, json_t *reply)
 
 int aa_service_args(const char *cmd, const char *help, int argc, char **argv, struct aa_service_args *a)
 {
-	enum { OPT_CONNECT = 256, OPT_JSON, OPT_STATE, OPT_OUT, OPT_FILE, OPT_NO_IMAGES, OPT_LABEL, OPT_SUITE, OPT_HELP };
+	enum { OPT_CONNECT = 256, OPT_JSON, OPT_STATE, OPT_OUT, OPT_FILE, OPT_NO_IMAGES, OPT_LABEL, OPT_SUITE, OPT_HELP,
+	       OPT_TOKEN_FILE, OPT_NO_WAIT };
 	static const struct option opts[] = {
 		{"connect", required_argument, 0, OPT_CONNECT}, {"json", no_argument, 0, OPT_JSON},
 		{"state", required_argument, 0, OPT_STATE}, {"out", required_argument, 0, OPT_OUT},
 		{"file", required_argument, 0, OPT_FILE}, {"no-images", no_argument, 0, OPT_NO_IMAGES},
 		{"label", required_argument, 0, OPT_LABEL}, {"suite", required_argument, 0, OPT_SUITE},
+		{"token-file", required_argument, 0, OPT_TOKEN_FILE}, {"no-wait", no_argument, 0, OPT_NO_WAIT},
 		{"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0},
 	};
 	memset(a, 0, sizeof *a);
@@ -282,11 +311,15 @@ int aa_service_args(const char *cmd, const char *help, int argc, char **argv, st
 			a->labels[a->label_count++] = optarg;
 			break;
 		case OPT_SUITE: a->suite = optarg; break;
+		case OPT_TOKEN_FILE: aa_conn_set_token_file(optarg); break;
+		case OPT_NO_WAIT: a->no_wait = true; break;
 		case OPT_HELP: fputs(help, stdout); return 1;
 		default: fputs(help, stderr); return -1;
 		}
 		/* each command's help lists the options it takes; the others are refused */
-		if (c != OPT_CONNECT && c != OPT_JSON && !strstr(help, opts[idx].name)) {
+		char named[32];
+		snprintf(named, sizeof named, "--%s ", opts[idx].name);
+		if (c != OPT_CONNECT && c != OPT_JSON && c != OPT_TOKEN_FILE && !strstr(help, named)) {
 			fprintf(stderr, "aalab %s: --%s does not apply here\n", cmd, opts[idx].name);
 			return -1;
 		}

@@ -5,16 +5,11 @@
 #include <string.h>
 
 #include "client.h"
-
-static double number(json_t *o, const char *key)
-{
-	json_t *v = json_object_get(o, key);
-	return json_is_number(v) ? json_number_value(v) : NAN;
-}
+#include "util/json_text.h"
 
 static double metric_mean(json_t *method, const char *name)
 {
-	return number(json_object_get(json_object_get(method, "metrics"), name), "mean");
+	return aa_json_number(json_object_get(json_object_get(method, "metrics"), name), "mean");
 }
 
 void aa_print_suite_table(json_t *results, FILE *out)
@@ -47,32 +42,30 @@ void aa_print_suite_table(json_t *results, FILE *out)
 			width = label && (int)strlen(label) > width ? (int)strlen(label) : width;
 		}
 	/* GPU ms: the median over every timed render, with the 10th-90th percentile range */
-	fprintf(out, "%-34s %-*s %12s %15s %8s %10s %8s %8s %8s\n", "case", width, "method",
-		"GPU ms/frame", "p10-p90 ms", "MB", "PSNR dB", "SSIM", "FLIP", "flicker");
+	fprintf(out, "%-34s %-*s %9s %-19s %8s %9s %7s %7s %8s  %s\n", "case", width, "method", "GPU ms",
+		"p10-p90 ms (n)", "MB", "PSNR dB", "SSIM", "FLIP", "flicker", "verdict");
 	json_array_foreach(json_object_get(results, "cases"), i, c) {
 		json_array_foreach(json_object_get(c, "methods"), j, m) {
 			json_t *gpu = json_object_get(m, "gpu_ms");
 			json_t *psnr = json_object_get(json_object_get(m, "metrics"), "psnr");
-			char psnr_text[32], spread[48];
+			char psnr_text[32], spread[48], place[160];
 			if (json_is_number(json_object_get(psnr, "mean")))
 				snprintf(psnr_text, sizeof psnr_text, "%.2f", json_number_value(json_object_get(psnr, "mean")));
 			else
 				snprintf(psnr_text, sizeof psnr_text, "%s",
 					 json_is_true(json_object_get(psnr, "identical")) ? "identical" : "-");
-			snprintf(spread, sizeof spread, "%.2f-%.2f", number(gpu, "p10"), number(gpu, "p90"));
-			fprintf(out, "%-34s %-*s %12.2f %15s %8.2f %10s %8.4f %8.4f %8.3f\n",
+			/* one timed render has no spread: an interval of one value would only look like one */
+			const long long n = json_integer_value(json_object_get(gpu, "n"));
+			if (n < AA_MIN_TIMED_RENDERS)
+				snprintf(spread, sizeof spread, "n=%lld: not ranked", n);
+			else
+				snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", aa_json_number(gpu, "p10"), aa_json_number(gpu, "p90"), n);
+			aa_verdict_place(c, json_string_value(json_object_get(m, "label")), place, sizeof place);
+			fprintf(out, "%-34s %-*s %9.2f %-19s %8.2f %9s %7.4f %7.4f %8.3f  %s\n",
 				j == 0 ? json_string_value(json_object_get(c, "id")) : "", width,
-				json_string_value(json_object_get(m, "label")), number(gpu, "median"), spread,
-				number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
-				metric_mean(m, "flip"), metric_mean(m, "flicker"));
+				json_string_value(json_object_get(m, "label")), aa_json_number(gpu, "median"), spread,
+				aa_json_number(m, "memory_bytes") / 1048576.0, psnr_text, metric_mean(m, "ssim"),
+				metric_mean(m, "flip"), metric_mean(m, "flicker"), place);
 		}
 	}
-}
-
-void aa_print_results_any(json_t *results, FILE *out)
-{
-	if (json_object_get(results, "cases"))
-		aa_print_suite_table(results, out);
-	else
-		aa_print_results_table(results, out);
 }

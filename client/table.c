@@ -1,199 +1,152 @@
-/* Terminal output of the client: the cost-vs-accuracy table, the progress bar, and --methods splitting. */
+/* The cost-vs-accuracy table of one job's results.json (or one case of a suite's): read from the document,
+ * so that a run in this process, a run on aalabd, a merge and `aalab get` print the same thing. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "client.h"
-#include "methods/methods.h"
-#include "results/results.h"
+#include "util/json_text.h"
 
-static void format_psnr(double psnr, bool identical, char *out, size_t size)
+/* PSNR as the table prints it: "identical" for identical images, "-" when there is none. */
+static void format_psnr(json_t *value, bool identical, char *out, size_t size)
 {
 	if (identical)
 		snprintf(out, size, "identical");
-	else if (isnan(psnr))
-		snprintf(out, size, "-");
+	else if (json_is_number(value))
+		snprintf(out, size, "%.2f", json_number_value(value));
 	else
-		snprintf(out, size, "%.2f", psnr);
+		snprintf(out, size, "-");
 }
 
 /* ", from the cache: 28 of 30 frames" when the run had a store (the frames it did not render). */
-static void cache_text(const struct aa_job_result *r, char *out, size_t size)
+static void cache_text(json_t *ref, char *out, size_t size)
 {
-	const struct aa_reference_cache_result *c = &r->reference.cache;
+	json_t *c = json_object_get(ref, "cache");
 	out[0] = 0;
-	if (!c->used)
+	if (!json_is_object(c))
 		return;
-	int n = snprintf(out, size, ", from the cache: %d of %d frames", c->hits, r->reference.frame_count);
-	if (c->continued && n > 0 && (size_t)n < size)
-		snprintf(out + n, size - (size_t)n, " (%d went on from a stored sum)", c->continued);
+	const long long frames = (long long)json_array_size(json_object_get(ref, "per_frame"));
+	const long long continued = json_integer_value(json_object_get(c, "continued"));
+	int n = snprintf(out, size, ", from the cache: %lld of %lld frames",
+			 json_integer_value(json_object_get(c, "hits")), frames);
+	if (continued && n > 0 && (size_t)n < size)
+		snprintf(out + n, size - (size_t)n, " (%lld went on from a stored sum)", continued);
 }
 
-void aa_print_table(const struct aa_job_result *r, FILE *out)
+/* "scene hard-edges, path default, 640x360, 1 frame, reference 64 samples (convergence 32 vs 64: 52.76 dB),
+ * DEVICE" and how the times were taken. */
+static void print_header(json_t *r, FILE *out)
 {
-	char cached[96];
-	cache_text(r, cached, sizeof cached);
-	double conv_mse = 0;
-	for (int f = 0; f < r->reference.frame_count; f++)
-		conv_mse += r->reference.frames[f].convergence_mse;
-	conv_mse /= r->reference.frame_count > 0 ? r->reference.frame_count : 1;
-	char conv[32];
-	format_psnr(aa_psnr_from_mse(conv_mse, 255.0), conv_mse == 0.0, conv, sizeof conv);
-	if (r->reference.auto_samples) {
+	json_t *job = json_object_get(r, "job"), *ref = json_object_get(r, "reference"), *timing = json_object_get(r, "timing");
+	const long long frames = json_integer_value(json_object_get(r, "frames"));
+	char conv[32], cached[96];
+	cache_text(ref, cached, sizeof cached);
+	format_psnr(json_object_get(ref, "convergence_psnr"), json_is_true(json_object_get(ref, "convergence_identical")),
+		    conv, sizeof conv);
+	fprintf(out, "scene %s, path %s, %s, %lld frame%s, ", aa_json_string(json_object_get(r, "scene"), "name"), aa_json_string(job, "path"),
+		aa_json_string(job, "size"), frames, frames == 1 ? "" : "s");
+	const long long samples = json_integer_value(json_object_get(ref, "samples"));
+	if (!strcmp(aa_json_string(ref, "mode"), "auto")) {
 		/* the N each frame reached, as a range: "auto" alone would hide what the reference cost */
-		int lo = 0, hi = 0, capped = 0;
-		for (int f = 0; f < r->reference.frame_count; f++) {
-			const struct aa_reference_frame *rf = &r->reference.frames[f];
-			lo = f == 0 || rf->samples < lo ? rf->samples : lo;
-			hi = rf->samples > hi ? rf->samples : hi;
-			capped += rf->samples >= r->reference.samples && !rf->convergence_identical &&
-				  !(rf->convergence_psnr >= r->reference.target_psnr);
+		long long lo = -1, hi = -1;
+		size_t i;
+		json_t *f;
+		json_array_foreach(json_object_get(ref, "per_frame"), i, f) {
+			const long long n = json_integer_value(json_object_get(f, "samples"));
+			lo = lo < 0 || n < lo ? n : lo;
+			hi = n > hi ? n : hi;
 		}
-		char reached[96];
-		snprintf(reached, sizeof reached, lo == hi ? "%d samples" : "%d-%d samples per frame", lo, hi);
-		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference auto: %s (target %.1f dB, cap %d; "
-			"convergence N/2 vs N: %s dB", r->scene_name, r->spec.path, r->spec.width, r->spec.height,
-			r->spec.frames, r->spec.frames == 1 ? "" : "s", reached, r->reference.target_psnr,
-			r->reference.samples, conv);
-		if (capped)
-			fprintf(out, "; %d frame%s stopped at the cap under the target", capped, capped == 1 ? "" : "s");
-		fprintf(out, ")%s, %s\n\n", cached, r->device_name);
+		char reached[64];
+		snprintf(reached, sizeof reached, lo == hi ? "%lld samples" : "%lld-%lld samples per frame", lo, hi);
+		fprintf(out, "reference auto: %s (target %.1f dB, cap %lld; convergence N/2 vs N: %s dB)%s", reached,
+			aa_json_number(ref, "target_psnr"), samples, conv, cached);
 	} else {
-		fprintf(out, "scene %s, path %s, %dx%d, %d frame%s, reference %d samples%s (convergence %d vs %d: "
-			"%s dB), %s\n\n", r->scene_name, r->spec.path, r->spec.width, r->spec.height, r->spec.frames,
-			r->spec.frames == 1 ? "" : "s", r->reference.samples, cached, r->reference.samples / 2,
-			r->reference.samples, conv, r->device_name);
+		fprintf(out, "reference %lld samples%s (convergence %lld vs %lld: %s dB)", samples, cached, samples / 2, samples,
+			conv);
 	}
-	bool sequence = r->spec.frames > 1;
-	/* GPU time over every timed render (frames x --repeat): median, the 10th-90th percentile range, count */
-	char over_head[24]; /* idiff's count: pixels with a channel off by more than the threshold */
-	snprintf(over_head, sizeof over_head, "%%px >%g", r->spec.over_threshold);
-	int width = 24; /* the method column fits the longest label, so parameters do not push the columns */
-	for (int i = 0; i < r->method_count; i++)
-		width = (int)strlen(r->methods[i].label) > width ? (int)strlen(r->methods[i].label) : width;
-	fprintf(out, "%-*s %12s %15s %4s %9s %10s %8s %10s", width, "method", "GPU ms/frame", "p10-p90 ms", "n", "MB",
-		"PSNR dB", "SSIM", over_head);
+	fprintf(out, ", %s\n", aa_json_string(json_object_get(r, "device"), "name"));
+	const long long repeat = json_integer_value(json_object_get(timing, "repeat"));
+	fprintf(out, "timing: %lld timed render%s per method (%lld frame%s x repeat %lld%s), GPU ms the median with "
+		"its p10-p90 spread\n\n", json_integer_value(json_object_get(timing, "timed_renders_per_method")),
+		json_integer_value(json_object_get(timing, "timed_renders_per_method")) == 1 ? "" : "s", frames,
+		frames == 1 ? "" : "s", repeat, json_is_true(json_object_get(timing, "auto")) ? ", auto" : "");
+}
+
+void aa_print_results_table(json_t *r, FILE *out)
+{
+	print_header(r, out);
+	json_t *methods = json_object_get(r, "methods"), *m;
+	size_t i;
+	const bool sequence = json_integer_value(json_object_get(r, "frames")) > 1;
+	/* the method column fits the longest label, so parameters do not push the columns */
+	int width = 12;
+	json_array_foreach(methods, i, m)
+		width = (int)strlen(aa_json_string(m, "label")) > width ? (int)strlen(aa_json_string(m, "label")) : width;
+	/* idiff's count: pixels with a channel off by more than the threshold, as a share of the pixels */
+	char over_head[32];
+	json_t *first_over = json_object_get(json_object_get(json_object_get(json_array_get(methods, 0), "metrics"),
+							      "over_threshold"), "threshold");
+	snprintf(over_head, sizeof over_head, "px >%g%% off", 100.0 * (json_is_number(first_over) ?
+								  json_number_value(first_over) : 0.01));
+	fprintf(out, "%-*s %9s %-19s %8s %9s %7s %7s %11s", width, "method", "GPU ms", "p10-p90 ms (n)", "MB", "PSNR dB",
+		"SSIM", "FLIP", over_head);
 	if (sequence) /* per-sequence figures: worst and best frame (index), and the temporal stability figure */
 		fprintf(out, " %16s %16s %8s", "worst dB (frame)", "best dB (frame)", "flicker");
-	fputc('\n', out);
-	for (int i = 0; i < r->method_count; i++) {
-		const struct aa_method_result *m = &r->methods[i];
-		struct aa_method_summary s;
-		aa_method_summarize(m, &s);
-		char psnr[32];
-		format_psnr(s.psnr_mean, s.psnr_identical, psnr, sizeof psnr);
-		char spread[48];
-		snprintf(spread, sizeof spread, "%.2f-%.2f", s.gpu_ms.p10, s.gpu_ms.p90);
-		fprintf(out, "%-*s %12.2f %15s %4d %9.1f %10s %8.4f %10.2f", width, m->label, s.gpu_ms.median, spread,
-			s.gpu_ms.n, m->memory_bytes / (1024.0 * 1024.0), psnr, s.ssim_mean,
-			100.0 * s.over_threshold_mean / ((double)r->spec.width * r->spec.height));
+	fprintf(out, "  %s\n", "verdict");
+	json_array_foreach(methods, i, m) {
+		json_t *gpu = json_object_get(m, "gpu_ms"), *metrics = json_object_get(m, "metrics");
+		json_t *psnr = json_object_get(metrics, "psnr");
+		char psnr_text[32], spread[48], place[160], over[32];
+		format_psnr(json_object_get(psnr, "mean"), json_is_true(json_object_get(psnr, "identical")), psnr_text,
+			    sizeof psnr_text);
+		const long long n = json_integer_value(json_object_get(gpu, "n"));
+		/* one timed render has no spread: an interval of one value would only look like one */
+		if (n < AA_MIN_TIMED_RENDERS)
+			snprintf(spread, sizeof spread, "n=%lld: not ranked", n);
+		else
+			snprintf(spread, sizeof spread, "%.2f-%.2f (%lld)", aa_json_number(gpu, "p10"), aa_json_number(gpu, "p90"), n);
+		const double share = aa_json_number(json_object_get(metrics, "over_threshold"), "mean_share");
+		snprintf(over, sizeof over, isfinite(share) ? "%.2f%%" : "-", 100.0 * share);
+		aa_verdict_place(r, aa_json_string(m, "label"), place, sizeof place);
+		fprintf(out, "%-*s %9.2f %-19s %8.1f %9s %7.4f %7.4f %11s", width, aa_json_string(m, "label"), aa_json_number(gpu, "median"),
+			spread, aa_json_number(m, "memory_bytes") / 1048576.0, psnr_text,
+			aa_json_number(json_object_get(metrics, "ssim"), "mean"), aa_json_number(json_object_get(metrics, "flip"), "mean"),
+			over);
 		if (sequence) {
-			char worst[32], best[32], text[48];
-			format_psnr(s.worst_psnr, false, worst, sizeof worst);
-			format_psnr(s.best_psnr, isnan(s.best_psnr), best, sizeof best);
-			snprintf(text, sizeof text, "%s (%d)", worst, s.worst_frame);
-			fprintf(out, " %16s", text);
-			snprintf(text, sizeof text, "%s (%d)", best, s.best_frame);
-			fprintf(out, " %16s %8.3f", text, s.flicker_mean);
+			char cell[48], value[32];
+			json_t *worst = json_object_get(psnr, "worst"), *best = json_object_get(psnr, "best");
+			format_psnr(json_object_get(worst, "value"), json_is_true(json_object_get(worst, "identical")), value,
+				    sizeof value);
+			snprintf(cell, sizeof cell, "%s (%lld)", value, json_integer_value(json_object_get(worst, "frame")));
+			fprintf(out, " %16s", cell);
+			format_psnr(json_object_get(best, "value"), json_is_true(json_object_get(best, "identical")), value,
+				    sizeof value);
+			snprintf(cell, sizeof cell, "%s (%lld)", value, json_integer_value(json_object_get(best, "frame")));
+			fprintf(out, " %16s %8.3f", cell, aa_json_number(json_object_get(metrics, "flicker"), "mean"));
 		}
-		fputc('\n', out);
+		fprintf(out, "  %s\n", place);
 	}
 	/* cut-out materials: say how each method tested alpha, so that a ranking can be read fairly */
 	bool cutouts = false;
-	for (int i = 0; i < r->plan_count && i < AA_MAX_PASSES; i++)
-		cutouts = cutouts || (strcmp(r->plan[i].pass, "alpha-test") == 0 && r->plan[i].ran);
+	json_array_foreach(json_object_get(r, "passes"), i, m)
+		cutouts = cutouts || (!strcmp(aa_json_string(m, "pass"), "alpha-test") && json_is_true(json_object_get(m, "ran")));
 	if (cutouts) {
 		fputs("\nalpha test of cut-out materials:", out);
-		for (int i = 0; i < r->method_count; i++)
-			fprintf(out, "%s %s %s", i ? "," : "", r->methods[i].label,
-				aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
+		json_array_foreach(methods, i, m)
+			fprintf(out, "%s %s %s", i ? "," : "", aa_json_string(m, "label"), aa_json_string(m, "alpha_rule"));
 		fputs("; reference per-sample (docs/methods.md)\n", out);
 	}
-	if (r->warning_count > 0) {
-		fprintf(out, "\nwarnings (what the scene draws differently from its files):\n");
-		for (int i = 0; i < r->warning_count && i < AA_MAX_WARNINGS; i++)
-			fprintf(out, "  %s\n", r->warnings[i]);
-		if (r->warnings_dropped > 0)
-			fprintf(out, "  ... and %d more\n", r->warnings_dropped);
-	}
 }
 
-static int progress_width;
-
-void aa_progress_update(int done, int total, const char *what)
+void aa_print_results(json_t *results, FILE *out)
 {
-	const int bar = 30;
-	int filled = total > 0 ? done * bar / total : 0;
-	char line[128];
-	int n = snprintf(line, sizeof line, "\r%s [", what);
-	for (int i = 0; i < bar; i++)
-		line[n++] = i < filled ? '#' : '.';
-	n += snprintf(line + n, sizeof line - (size_t)n, "] %d/%d", done, total);
-	progress_width = n;
-	fputs(line, stderr);
-	fflush(stderr);
-}
-
-static int progress_tenth; /* the last tenth aa_progress_line printed (0: none yet) */
-
-void aa_progress_line(const char *cmd, int done, int total, const char *what)
-{
-	if (total <= 0)
-		return;
-	if (done < 0)
-		done = 0;
-	int tenth = done >= total ? 10 : (int)((long)done * 10 / total);
-	if (tenth <= progress_tenth)
-		return;
-	progress_tenth = tenth;
-	fprintf(stderr, "aalab %s: %s %d/%d (%d%%)\n", cmd, what, done, total, (int)((long)done * 100 / total));
-	fflush(stderr);
-}
-
-void aa_progress_finish(void)
-{
-	progress_tenth = 0;
-	if (progress_width) {
-		fprintf(stderr, "\r%*s\r", progress_width, "");
-		progress_width = 0;
-	}
-}
-
-void aa_free_strings(char **v, int count)
-{
-	for (int i = 0; i < count; i++)
-		free(v[i]);
-	free(v);
-}
-
-int aa_split_methods(const char *text, char ***out, int *count)
-{
-	char *copy = strdup(text);
-	char **list = calloc(strlen(text) + 1, sizeof *list);
-	int n = 0;
-	if (!copy || !list) {
-		free(copy);
-		free(list);
-		return -1;
-	}
-	char *save = NULL;
-	for (char *tok = strtok_r(copy, ", \t", &save); tok; tok = strtok_r(NULL, ", \t", &save)) {
-		bool continues = n > 0 && strchr(tok, '=') && !strchr(tok, ':');
-		if (continues) {
-			size_t len = strlen(list[n - 1]) + strlen(tok) + 2;
-			char *joined = malloc(len);
-			if (!joined)
-				break;
-			snprintf(joined, len, "%s,%s", list[n - 1], tok);
-			free(list[n - 1]);
-			list[n - 1] = joined;
-		} else {
-			list[n++] = strdup(tok);
-		}
-	}
-	free(copy);
-	*out = list;
-	*count = n;
-	return 0;
+	const bool suite = json_object_get(results, "cases") != NULL;
+	aa_print_verdict(results, out);
+	fputc('\n', out);
+	if (suite)
+		aa_print_suite_table(results, out);
+	else
+		aa_print_results_table(results, out);
+	aa_print_warnings(results, out);
 }

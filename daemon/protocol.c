@@ -128,9 +128,11 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 		return;
 	}
 	if (c->via_tcp && c->d->token[0]) {
-		if (!token_equal(json_string_value(json_object_get(msg, "token")), c->d->token)) {
-			protocol_error(c, tag, "unauthorized", "token", "TCP clients must send the bearer token of the "
-				       "daemon's token file in hello");
+		const char *given = json_string_value(json_object_get(msg, "token"));
+		if (!token_equal(given, c->d->token)) {
+			protocol_error(c, tag, "unauthorized", "token", "%s: TCP clients send the bearer token of the "
+				       "daemon's token file in hello (aalab: AALAB_TOKEN, AALAB_TOKEN_FILE or --token-file)",
+				       given && *given ? "wrong token" : "no token");
 			conn_close_after_flush(c);
 			return;
 		}

@@ -5,10 +5,11 @@
 LDADD = $(TEST_LIBS)
 AM_CFLAGS += $(CMOCKA_CFLAGS)
 
-# the command line: refusals that name the field, output folders, jobs end to end, `aalab diff`, mesh
+# the command line: refusals that name the field, --help against aalab(1), output folders, jobs end to
+# end, `aalab diff`, mesh
 # files and their warnings, user methods from the examples, suites, compare and JUnit, shards and merging,
 # the bench scripts' smoke run, SSIM against scikit-image
-SCRIPT_TESTS = tests/ssim_oracle.sh tests/cli_errors.sh tests/cli_outdir.sh tests/run_job.sh \
+SCRIPT_TESTS = tests/ssim_oracle.sh tests/cli_errors.sh tests/cli_help.sh tests/cli_outdir.sh tests/run_job.sh \
 	tests/bench_smoke.sh tests/diff_cli.sh tests/cli_assets.sh tests/user_methods.sh \
 	tests/farm_cli.sh tests/farm_cost.sh tests/shard_merge.sh
 # hard cases: the self-measuring reference, the hard-case suite and its verdicts (tests/hardcases/), a

@@ -13,7 +13,7 @@ expect_status 0 "fixed 16" -- "$AALAB" run --local --quiet --scene thin-wires --
 	--methods none --reference-samples 16 --out "$TMP/fixed"
 cmp -s "$TMP/capped/frames/reference/0000.png" "$TMP/fixed/frames/reference/0000.png" &&
 	pass "auto at its cap is the fixed-N reference, bit for bit" || fail "auto at cap 16 differs from 16 samples"
-grep -q "Reference capped</b>: 1 frame reached" "$TMP/capped/report.html" &&
+grep -q "<li><b>reference-capped</b>: 1 frame of the reference reached reference.max_samples" "$TMP/capped/report.html" &&
 	pass "the report warns of the frame that stopped at the cap" || fail "no capped warning in report.html"
 grep -q "auto: 16 samples" "$TMP/capped/report.html" && pass "the report's Reference card says auto and N" ||
 	fail "report card"

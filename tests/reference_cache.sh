@@ -51,6 +51,10 @@ expect_status 0 "a run over a damaged entry" -- "$AALAB" run $job --reference-ca
 expect_stderr "warning: reference cache: entry [0-9a-f]{16} failed its check: its CRC-32 does not match its bytes.*removed, rendering it again" \
 	"the damaged entry is reported"
 grep -q "from the cache: 1 of 2 frames" "$TMP/out" && pass "the damaged frame is rendered again" || fail "$(head -1 "$TMP/out")"
+# and it is one of the run's warnings, where every other warning is: results.json and after the table
+/usr/bin/python3 -c 'import json,sys; w=json.load(open(sys.argv[1]))["warnings"]; sys.exit(not any(x["code"] == "reference-cache" and "CRC-32" in x["message"] for x in w))' \
+	"$TMP/e/results.json" && pass "results.json's warnings name the damaged entry" || fail "no reference-cache warning in results.json"
+grep -q "failed its check" "$TMP/out" && pass "the table's warnings name it" || fail "the table's warnings do not name it"
 grep -q '"discarded": 1' "$TMP/e/results.json" && pass "results.json counts it" || fail "discarded not counted"
 
 expect_status 2 "a size that is too small" -- "$AALAB" run $job --reference-cache-size 12K --out "$TMP/f"

@@ -61,9 +61,30 @@ expect_status 0 "a run without --quiet, stderr not a terminal" -- "$AALAB" run $
 /usr/bin/python3 - "$TMP/err" "$TMP/out" <<'PY' && pass "progress: a line per tenth on stderr, to 15/15 (100%)" || fail "progress lines: $(cat "$TMP/err")"
 import re, sys
 lines = [l for l in open(sys.argv[1]).read().splitlines() if l.startswith("aalab run: rendering")]
-done = [int(re.match(r"aalab run: rendering (\d+)/15 \((\d+)%\)$", l).group(1)) for l in lines]
+done = [int(re.match(r"aalab run: rendering (\d+)/15 \((\d+)%, ETA [0-9hms?]+\)$", l).group(1)) for l in lines]
 assert 1 <= len(done) <= 10 and done == sorted(done) and done[-1] == 15, lines
 assert "rendering" not in open(sys.argv[2]).read()
+PY
+# the verdict first, the table with FLIP and what its columns are, the warnings after it, as results.json
+# has them; a reference of 4 samples is not converged, and one timed render ranks nothing
+expect_status 0 "one frame timed once, a 4-sample reference" -- "$AALAB" run --scene hard-edges --methods none,fxaa \
+	--size 160x90 --reference-samples 4 --repeat 1 --no-images --quiet --out "$TMP/g"
+/usr/bin/python3 - "$TMP/g/results.json" "$TMP/out" <<'PY' && pass "verdict first, the table, then the warnings, as results.json says them" || fail "verdict and warnings: $(cat "$TMP/out")"
+import json, sys
+r, out = json.load(open(sys.argv[1])), open(sys.argv[2]).read().splitlines()
+assert out[0] == "verdict: " + r["verdict"]["headline"], out[0]
+assert r["verdict"]["headline"] == "not ranked: n=1 timed render per method, 5 needed to rank costs", r["verdict"]
+assert r["verdict"]["ranked"] is False and r["verdict"]["front"] == []
+header = [l for l in out if l.startswith("method ")][0]
+assert "FLIP" in header and "px >1% off" in header and "p10-p90 ms (n)" in header and "verdict" in header, header
+rows = [l for l in out if l.startswith("none ") or l.startswith("fxaa ")]
+assert len(rows) == 2 and all("n=1: not ranked" in l for l in rows), rows
+codes = [w["code"] for w in r["warnings"]]
+assert "reference-not-converged" in codes and "too-few-timed-renders" in codes, codes
+at = out.index("warnings (%d):" % len(r["warnings"]))
+assert at > out.index(header)
+for w in r["warnings"]:
+    assert "  %s: %s" % (w["code"], w["message"]) in out and "    what to do: " + w["action"] in out, w
 PY
 expect_status 0 "--quiet" -- "$AALAB" run $job --no-images --out "$TMP/f"
 grep -q "rendering" "$TMP/err" && fail "--quiet printed progress: $(cat "$TMP/err")" || pass "--quiet prints no progress"

@@ -411,12 +411,15 @@ static void judge(const struct aa_gate *g, const double quality_change[4], const
 	if (why_unknown) {
 		snprintf(message, sizeof message, "%s: not judged: %s", g->text, why_unknown);
 	} else if (cost_metric) {
-		char lo_text[48], hi_text[48];
+		char lo_text[48], hi_text[48], raw_text[48];
 		change_text(lo, g->percent, g->metric, lo_text, sizeof lo_text);
 		change_text(hi, g->percent, g->metric, hi_text, sizeof hi_text);
 		const struct cost_change *c = &cost[g->metric == AA_GATE_CPU_MS];
-		snprintf(message, sizeof message, "%s p10 changed by %s (%.3g -> %.3g ms, machine factor x%.2f; %.0f%% "
-			 "interval %s to %s): %s %s", metric, text, b, n, c->factor, 100 * INTERVAL_LEVEL, lo_text, hi_text,
+		change_text(g->percent ? c->change_pct : c->change, g->percent, g->metric, raw_text, sizeof raw_text);
+		/* what was measured, then what was judged: the two differ by the machine factor */
+		snprintf(message, sizeof message, "%s p10 %.3g -> %.3g ms (%s as measured); judged over the machine factor "
+			 "x%.2f: %s, %.0f%% interval %s to %s: %s %s", metric, b, n, raw_text, c->factor, text,
+			 100 * INTERVAL_LEVEL, lo_text, hi_text,
 			 trips ? "the whole interval is past the gate" : "within the gate or the runs' spread", g->text);
 	} else {
 		snprintf(message, sizeof message, "%s changed by %s (%.6g -> %.6g): %s %s", metric, text, b, n,
@@ -544,6 +547,11 @@ static json_t *compare_case(struct side_case *bc, struct side_case *nc, const st
 			      "value", num(factor[0]), "interval", num(factor_interval[0][0]), num(factor_interval[0][1]),
 			      "cpu_ms", "value", num(factor[1]), "interval", num(factor_interval[1][0]),
 			      num(factor_interval[1][1]));
+		/* each run's verdict of the case (results.json's cost-quality front), as it is */
+		json_t *vb = json_object_get(bc->obj, "verdict"), *vn = json_object_get(nc->obj, "verdict");
+		if (c)
+			json_object_set_new(c, "verdict", json_pack("{s:O, s:O}", "base", vb ? vb : json_null(), "new",
+								     vn ? vn : json_null()));
 		if (c && bc->frames != nc->frames)
 			json_object_set_new(c, "frames_changed", json_pack("{s:i, s:i}", "base", bc->frames, "new",
 									   nc->frames));
@@ -559,8 +567,9 @@ static json_t *run_json(const struct side *s, const char *source)
 {
 	json_t *d = s->doc;
 	json_t *labels = json_object_get(d, "labels");
-	return json_pack("{s:s, s:O, s:s, s:O, s:s, s:s, s:i}", "source", source ? source : "", "labels",
-			 json_is_object(labels) ? labels : json_object(), "suite",
+	/* a document without labels gets an empty object of its own ("o" takes it, "O" would keep a reference) */
+	return json_pack("{s:s, s:o, s:s, s:O, s:s, s:s, s:i}", "source", source ? source : "", "labels",
+			 json_is_object(labels) ? json_incref(labels) : json_object(), "suite",
 			 json_string_value(json_object_get(d, "suite")) ? json_string_value(json_object_get(d, "suite")) : "",
 			 "job_hash", json_object_get(d, "job_hash") ? json_object_get(d, "job_hash") : json_null(),
 			 "name", json_string_value(json_object_get(d, "name")) ? json_string_value(json_object_get(d, "name")) : "",
@@ -580,6 +589,46 @@ static void missing_list(const struct side *s, char *out, size_t size, json_t *a
 			if (used < size)
 				used += (size_t)snprintf(out + used, size - used, "%s%s", used ? ", " : "", s->cases[c].id);
 		}
+}
+
+/* Why no gate judged anything: when no method paired, each shared case's methods ("case X: BASE has fxaa,
+ * smaa; NEW has taa"); otherwise why the first gate was not judged. */
+static void nothing_judged(const struct side *b, const struct side *n, json_t *cases, char *out, size_t size)
+{
+	bool pairs = false;
+	for (int i = 0; i < b->case_count; i++)
+		for (int m = 0; b->cases[i].paired >= 0 && m < b->cases[i].method_count; m++)
+			pairs = pairs || b->cases[i].methods[m].paired >= 0;
+	if (pairs) {
+		const char *why = "no gates";
+		size_t i, j;
+		json_t *c, *m;
+		json_array_foreach(cases, i, c)
+			json_array_foreach(json_object_get(c, "methods"), j, m)
+				if (!strcmp(why, "no gates") && json_array_size(json_object_get(m, "gates")))
+					why = json_string_value(json_object_get(json_array_get(json_object_get(m, "gates"), 0),
+										"message"));
+		snprintf(out, size, "nothing was judged, so nothing can pass: the methods paired, but no gate could judge "
+			 "them (%s); choose gates these runs can judge", why ? why : "no gates");
+		return;
+	}
+	size_t used = (size_t)snprintf(out, size, "nothing was judged, so nothing can pass: no method pairs by label or "
+				       "by name;");
+	for (int i = 0; i < b->case_count && used < size; i++) {
+		const struct side_case *bc = &b->cases[i];
+		if (bc->paired < 0)
+			continue;
+		const struct side_case *nc = &n->cases[bc->paired];
+		used += (size_t)snprintf(out + used, size - used, " case %s: BASE has", bc->id);
+		for (int m = 0; m < bc->method_count && used < size; m++)
+			used += (size_t)snprintf(out + used, size - used, "%s %s", m ? "," : "", bc->methods[m].label);
+		for (int m = 0; m < nc->method_count && used < size; m++)
+			used += (size_t)snprintf(out + used, size - used, "%s %s", m ? "," : "; NEW has", nc->methods[m].label);
+		if (used < size)
+			used += (size_t)snprintf(out + used, size - used, ";");
+	}
+	if (used < size)
+		snprintf(out + used, size - used, " compare runs of the same methods");
 }
 
 json_t *aa_compare_results(const json_t *base, const json_t *new_run, const struct aa_compare_options *opts,
@@ -623,15 +672,16 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 		if (b.cases[i].paired < 0)
 			continue;
 		json_t *c = compare_case(&b.cases[i], &n.cases[b.cases[i].paired], &o, tripped, &k, err);
-		if (!c) {
-			json_decref(cases);
-			json_decref(tripped);
-			json_decref(gates);
-			json_decref(missing_base);
-			json_decref(missing_new);
-			goto done;
-		}
+		if (!c)
+			goto drop;
 		json_array_append_new(cases, c);
+	}
+	/* a comparison that judged nothing must not pass: name what did not pair, or why no gate could judge */
+	if (k.held + k.tripped == 0) {
+		char why[1500];
+		nothing_judged(&b, &n, cases, why, sizeof why);
+		aa_error_set(err, AA_ERR_INVALID, "", "%s", why);
+		goto drop;
 	}
 	result = json_pack("{s:i, s:s, s:o, s:o, s:o, s:{s:s, s:s, s:f, s:i, s:i}, s:{s:i, s:i, s:i, s:i}, s:o, "
 			   "s:o, s:{s:o, s:o}}",
@@ -643,6 +693,13 @@ json_t *aa_compare_results(const json_t *base, const json_t *new_run, const stru
 			   missing_new);
 	if (!result)
 		aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory building the comparison");
+	goto done;
+drop: /* the parts of a comparison that will not be made */
+	json_decref(cases);
+	json_decref(tripped);
+	json_decref(gates);
+	json_decref(missing_base);
+	json_decref(missing_new);
 done:
 	side_free(&b);
 	side_free(&n);

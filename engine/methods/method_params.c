@@ -11,6 +11,7 @@
 
 #include "types/method.h"
 #include "methods/methods.h"
+#include "util/suggest.h"
 
 static bool has_range(const struct aa_param_def *d);
 
@@ -205,9 +206,14 @@ int aa_method_set_param(const struct aa_method *m, struct aa_method_params *para
 		if (param_count(m) == 0)
 			return fail(err, AA_ERR_INVALID, path, m->name, "takes no parameters (got \"%s\")",
 				    shown(key, k, sizeof k));
+		const char *names[AA_MAX_PARAMS];
+		for (int p = 0; p < param_count(m); p++)
+			names[p] = m->params[p].name;
+		char mean[96];
+		aa_suggest_text(key, names, param_count(m), mean, sizeof mean);
 		list_param_names(m, valid, sizeof valid);
-		return fail(err, AA_ERR_INVALID, path, m->name, "unknown parameter \"%s\"; valid parameters: %s",
-			    shown(key, k, sizeof k), valid);
+		return fail(err, AA_ERR_INVALID, path, m->name, "unknown parameter \"%s\"%s; valid parameters: %s",
+			    shown(key, k, sizeof k), mean, valid);
 	}
 	const struct aa_param_def *d = &m->params[i];
 	double parsed;
@@ -311,9 +317,11 @@ int aa_method_parse(const char *text, const char *path, const struct aa_method *
 			    "user:file=FILE.json, in a job's methods (docs/user-methods.md)");
 	const struct aa_method *m = aa_method_find(name);
 	if (!m) {
+		char mean[96];
+		aa_method_suggest(name, mean, sizeof mean);
 		aa_method_list_names(known, sizeof known);
-		return fail(err, AA_ERR_NOT_FOUND, path, NULL, "unknown method \"%s\"; known methods: %s",
-			    shown(name, shown_buf, sizeof shown_buf), known);
+		return fail(err, AA_ERR_NOT_FOUND, path, NULL, "unknown method \"%s\"%s; known methods: %s",
+			    shown(name, shown_buf, sizeof shown_buf), mean, known);
 	}
 	if (colon) {
 		if (aa_method_parse_params(m, colon + 1, path, params, err) < 0)
@@ -330,6 +338,17 @@ void aa_method_list_names(char *out, size_t size)
 	out[0] = '\0';
 	for (int i = 0; i < aa_method_count; i++)
 		append(out, size, "%s%s", i ? ", " : "", aa_methods[i]->name);
+	append(out, size, ", user:file=FILE.json (docs/user-methods.md)");
+}
+
+void aa_method_suggest(const char *name, char *out, size_t size)
+{
+	const char *names[64 + 1];
+	int n = 0;
+	for (int i = 0; i < aa_method_count && n < 64; i++)
+		names[n++] = aa_methods[i]->name;
+	names[n++] = "user";
+	aa_suggest_text(name, names, n, out, size);
 }
 
 void aa_method_param_text(const struct aa_method *m, const struct aa_method_params *p, int i, char *out,

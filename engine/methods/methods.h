@@ -30,6 +30,8 @@ int aa_method_parse_params(const struct aa_method *m, const char *list, const ch
 			   struct aa_method_params *params, struct aa_error *err);
 /* "none, ssaa, ...": the registry's method names, for messages. */
 void aa_method_list_names(char *out, size_t size);
+/* " (did you mean 'smaa'?)" for a misspelt method name, or "". */
+void aa_method_suggest(const char *name, char *out, size_t size);
 /* Sets one parameter from text, validating type, range and allowed values. */
 int aa_method_set_param(const struct aa_method *m, struct aa_method_params *params, const char *key,
 			const char *value, const char *path, struct aa_error *err);

@@ -1,8 +1,9 @@
-# engine/report: report.html, one self-contained page: warnings, tables, charts and the image viewer.
+# engine/report: report.html, one self-contained page: the verdict and warnings, tables, charts and the
+# image viewer.
 # viewer.js and viewer.css are edited as themselves and embedded at build time as C byte arrays
 # (viewer_assets.h).
 libaaengine_a_SOURCES += engine/report/report_html.c engine/report/report_viewer.c \
-	engine/report/report_warnings.c engine/report/report_regions.c engine/report/report.h engine/report/suite_report.c
+	engine/report/report_verdict.c engine/report/report_regions.c engine/report/report.h engine/report/suite_report.c
 VIEWER_ASSETS = engine/report/viewer.js engine/report/viewer.css
 EXTRA_DIST += $(VIEWER_ASSETS)
 BUILT_SOURCES += engine/report/viewer_assets.h

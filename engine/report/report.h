@@ -10,10 +10,6 @@
 /* Writes dir/report.html: the table, an SVG chart of GPU ms vs PSNR, per-method images. */
 int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err);
 
-/* PSNR of the reference's N/2- against its N-sample image from the mean MSE over its frames; NAN when none
- * or identical (*identical says which). */
-double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical);
-
 /* The report's style sheet and HTML escaping, shared by the report of a suite (suite_results.c). */
 extern const char aa_report_style[];
 void aa_report_esc(FILE *o, const char *s);
@@ -26,8 +22,9 @@ int aa_report_write_viewer(FILE *o, const struct aa_job_result *r, const char *d
  * without kept frames or when a map cannot be read (report_regions.c). */
 json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count);
 int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir, struct aa_error *err);
-/* report.html's warnings panel (report_warnings.c): what makes numbers of this job untrustworthy. */
-void aa_report_write_warnings(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum);
+/* report.html's top (report_verdict.c): the verdict object and the warnings[] of results.json, as they
+ * are (either may be NULL). */
+void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warnings);
 /* A chart point's label: where it is drawn (x, baseline y; anchored at its right end when `end`) and the
  * span it takes, x0..x1. aa_report_spread_labels moves labels down until no two overlap (report_html.c). */
 struct aa_point_label {

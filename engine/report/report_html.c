@@ -10,6 +10,8 @@
 #include "results/results.h"
 #include "methods/methods.h"
 #include "report/report.h"
+#include "results/front.h"
+#include "results/warnings.h"
 #include "run/job_spec.h"
 
 /* The SVG coordinate box of every chart and its plot margins (left, right, top, bottom). */
@@ -77,21 +79,6 @@ static double curve_mean(const struct aa_method_result *m, int t)
 			n++;
 		}
 	return n ? sum / n : NAN;
-}
-
-double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical)
-{
-	double sum = 0;
-	int n = 0;
-	for (int i = 0; ref->frames && i < ref->frame_count; i++) {
-		const double mse = ref->frames[i].convergence_identical ? 0.0 : ref->frames[i].convergence_mse;
-		if (isfinite(mse)) {
-			sum += mse;
-			n++;
-		}
-	}
-	*identical = n > 0 && sum == 0;
-	return n && sum > 0 ? aa_psnr_from_mse(sum / n, 255.0) : NAN;
 }
 
 /* ------------------------------------------------------------------------------------------- charts */
@@ -269,7 +256,8 @@ void aa_report_spread_labels(struct aa_point_label *l, int n)
 	}
 }
 
-static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum)
+static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum,
+				const json_t *verdict)
 {
 	double xmax = 0, ylo = INFINITY, yhi = -INFINITY;
 	bool any_identical = false, any = false;
@@ -326,6 +314,12 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 			fprintf(o, "<path class=\"spread\" stroke=\"%s\" d=\"M%.1f %.1fH%.1fM%.1f %.1fv8M%.1f %.1fv8\"/>\n",
 				color(i), cx(&c, sum[i].gpu_ms.p10), y, cx(&c, sum[i].gpu_ms.p90), cx(&c, sum[i].gpu_ms.p10),
 				y - 4, cx(&c, sum[i].gpu_ms.p90), y - 4);
+		/* the front is ringed: the methods no other beats (verdict.methods[].place) */
+		const char *place = json_string_value(json_object_get(json_array_get(json_object_get(verdict, "methods"),
+										      (size_t)i), "place"));
+		if (place && !strcmp(place, "front"))
+			fprintf(o, "<circle class=\"front\" cx=\"%.1f\" cy=\"%.1f\" r=\"9\" fill=\"none\" stroke=\"%s\" "
+				   "stroke-width=\"2\"/>\n", x, y, color(i));
 		fprintf(o, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5.5\" fill=\"%s\"><title>", x, y, color(i));
 		esc(o, r->methods[i].label);
 		fprintf(o, ": %.2f ms (p10-p90 %.2f-%.2f, n %d), ", sum[i].gpu_ms_median, sum[i].gpu_ms.p10,
@@ -340,7 +334,8 @@ static void chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const st
 		fputs("</text>\n", o);
 	}
 	fputs("</svg>\n<figcaption>Each point is one method: further left is cheaper, higher is closer to the "
-	      "reference. Bars span the 10th to 90th percentile of the GPU time over every timed render.</figcaption>\n"
+	      "reference. Bars span the 10th to 90th percentile of the GPU time over every timed render; a ring marks "
+	      "a method on the front (the verdict above).</figcaption>\n"
 	      "</figure>\n", o);
 }
 
@@ -475,7 +470,12 @@ const char aa_report_style[] =
 	".imgs{display:grid;grid-template-columns:repeat(auto-fit,minmax(240px,1fr));gap:10px}"
 	".imgs figure{padding:6px;margin:0}.imgs img{width:100%;height:auto;display:block;image-rendering:pixelated;"
 	"background:#e2e8f0}"
-	"footer{margin-top:40px;color:var(--mute);font-size:13px}";
+	"footer{margin-top:40px;color:var(--mute);font-size:13px}"
+	".warnings{background:#fef3c7;border:1px solid #f59e0b;border-radius:10px;padding:4px 16px;margin:0 0 16px}"
+	".warnings h2{margin:8px 0 4px;border:0;font-size:17px}.warnings li{margin:4px 0}.warnings .todo{color:#78350f}"
+	".verdict{background:#ecfdf5;border:1px solid #10b981;border-radius:10px;padding:4px 16px;margin:0 0 16px}"
+	".verdict h2{margin:8px 0 4px;border:0;font-size:17px}.verdict .headline{font-size:17px;font-weight:600;margin:4px 0}"
+	".verdict li{margin:2px 0}.verdict .note{margin:6px 0}";
 
 static void card(FILE *o, const char *key, const char *value, const char *detail)
 {
@@ -565,22 +565,24 @@ static void summary_cards(FILE *o, const struct aa_job_result *r)
 	card(o, "Methods", v, d);
 }
 
-/* Mean FLIP over the frames that have one; NAN when none. */
-static double flip_mean(const struct aa_method_result *m)
+/* The verdict's word for method i: "front", "beaten by smaa", "not ranked" (results.json verdict.methods). */
+static void put_place(FILE *o, const json_t *verdict, int i)
 {
-	double sum = 0;
-	int n = 0;
-	for (int f = 0; f < m->frame_count; f++)
-		if (isfinite(m->frames[f].metrics.flip_mean)) {
-			sum += m->frames[f].metrics.flip_mean;
-			n++;
-		}
-	return n ? sum / n : NAN;
+	const json_t *m = json_array_get(json_object_get(verdict, "methods"), (size_t)i);
+	const json_t *by = json_object_get(m, "beaten_by");
+	if (by) {
+		fputs("beaten by ", o);
+		esc(o, json_string_value(json_object_get(by, "method")));
+	} else {
+		esc(o, json_string_value(json_object_get(m, "place")) ? json_string_value(json_object_get(m, "place")) : "-");
+	}
 }
 
-static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum)
+static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum,
+		       const json_t *verdict)
 {
-	fputs("<table>\n<tr><th>Method</th><th>Path taken</th>"
+	fputs("<table>\n<tr><th>Method</th><th title=\"the verdict: on the cost-quality front, beaten by another "
+	      "method, or not ranked (too few timed renders)\">Verdict</th><th>Path taken</th>"
 	      "<th title=\"how cut-out (alpha-tested) materials were tested: per-pixel, per-sample or "
 	      "alpha-to-coverage\">Alpha test</th><th class=\"n\">GPU ms/frame<br>median</th>"
 	      "<th class=\"n\">GPU ms<br>p10&ndash;p90</th><th class=\"n\">GPU ms<br>min</th>"
@@ -601,6 +603,8 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		fprintf(o, "<tr><td><span class=\"swatch\" style=\"background:%s\"></span>", color(i));
 		esc(o, r->methods[i].label);
 		fputs("</td><td>", o);
+		put_place(o, verdict, i);
+		fputs("</td><td>", o);
 		esc(o, r->methods[i].path_taken);
 		fputs("</td><td>", o);
 		if (r->methods[i].method)
@@ -608,9 +612,13 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->gpu_ms_median, 2);
 		fputs("</td><td class=\"n\">", o);
-		put_num(o, s->gpu_ms.p10, 2);
-		fputs("&ndash;", o);
-		put_num(o, s->gpu_ms.p90, 2);
+		if (s->gpu_ms.n < AA_MIN_TIMED_RENDERS) { /* one value is no spread */
+			fprintf(o, "n=%d: not ranked", s->gpu_ms.n);
+		} else {
+			put_num(o, s->gpu_ms.p10, 2);
+			fputs("&ndash;", o);
+			put_num(o, s->gpu_ms.p90, 2);
+		}
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->gpu_ms.min, 2);
 		fprintf(o, "</td><td class=\"n\">%d</td><td class=\"n\">", s->gpu_ms.n);
@@ -624,7 +632,7 @@ static void cost_table(FILE *o, const struct aa_job_result *r, const struct aa_m
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->ssim_mean, 4);
 		fputs("</td><td class=\"n\">", o);
-		put_num(o, flip_mean(&r->methods[i]), 4);
+		put_num(o, s->flip_mean, 4);
 		fputs("</td><td class=\"n\">", o);
 		put_num(o, s->flicker_mean, 3);
 		fputs("</td></tr>\n", o);
@@ -714,19 +722,23 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 		esc(o, view.started_at);
 	}
 	fputs("</p>\n", o);
-	aa_report_write_warnings(o, &view, sum);
+	/* first what a reader wants to know, as results.json says it: the verdict and what qualifies it */
+	json_t *verdict = aa_verdict_json(&view), *warnings = verdict ? aa_results_warnings_json(&view, verdict) : NULL;
+	aa_report_write_verdict(o, verdict, warnings);
 	fputs("<div class=\"cards\">\n", o);
 	summary_cards(o, &view);
-	fputs("</div>\n<h2 id=\"images\">Images</h2>\n", o);
+	fputs("</div>\n<h2 id=\"cost-chart\">GPU time against PSNR</h2>\n", o);
+	chart_cost_accuracy(o, &view, sum, verdict);
+	fputs("<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
+	cost_table(o, &view, sum, verdict);
+	json_decref(verdict);
+	json_decref(warnings);
+	fputs("<h2 id=\"images\">Images</h2>\n", o);
 	if (aa_report_write_viewer(o, &view, dir, err)) {
 		fclose(o);
 		free(buf);
 		return -1;
 	}
-	fputs("<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
-	cost_table(o, &view, sum);
-	fputs("<h2 id=\"cost-chart\">GPU time against PSNR</h2>\n", o);
-	chart_cost_accuracy(o, &view, sum);
 	fputs("<h2 id=\"thresholds\">Error-threshold curves</h2>\n", o);
 	chart_thresholds(o, &view);
 	if (view.spec.frames > 1) {

@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 
 #include "report/report.h"
+#include "results/front.h"
+#include "results/warnings.h"
 #include "run/job_spec.h"
 
 int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, struct aa_error *err)
@@ -107,9 +109,37 @@ int aa_suite_report_write_html(const struct aa_suite_result *r, const char *dir,
 		aa_report_esc(o, r->cases[0]->driver_info);
 		fputs("</div></div>\n", o);
 	}
-	fprintf(o, "<div class=\"card\"><div class=\"k\">Reference</div><div class=\"v\">%d samples</div>"
-		"<div class=\"d\">timing.repeat %d</div></div>\n</div>\n", r->spec.reference_samples,
-		r->spec.timing_repeat);
+	if (r->spec.timing_auto)
+		fprintf(o, "<div class=\"card\"><div class=\"k\">Reference</div><div class=\"v\">%d samples</div>"
+			"<div class=\"d\">timing.repeat auto: 5 timed renders per method at least</div></div>\n</div>\n",
+			r->spec.reference_samples);
+	else
+		fprintf(o, "<div class=\"card\"><div class=\"k\">Reference</div><div class=\"v\">%d samples</div>"
+			"<div class=\"d\">timing.repeat %d</div></div>\n</div>\n", r->spec.reference_samples,
+			r->spec.timing_repeat);
+	/* each case's verdict and warnings, as its results.json has them */
+	fputs("<section id=\"verdict\" class=\"verdict\"><h2>Verdict per case</h2><ul>\n", o);
+	int warned = 0;
+	for (int c = 0; c < r->case_count; c++) {
+		char id[512], rel[600];
+		aa_case_id(&r->spec, c, id, sizeof id);
+		aa_case_relpath(&r->spec, c, rel, sizeof rel);
+		json_t *v = aa_verdict_json(r->cases[c]), *w = v ? aa_results_warnings_json(r->cases[c], v) : NULL;
+		fputs("<li><a href=\"", o);
+		aa_report_esc(o, rel);
+		fputs("/report.html\">", o);
+		aa_report_esc(o, id);
+		fputs("</a>: ", o);
+		aa_report_esc(o, json_string_value(json_object_get(v, "headline")));
+		fputs("</li>\n", o);
+		warned += (int)json_array_size(w);
+		json_decref(v);
+		json_decref(w);
+	}
+	fputs("</ul></section>\n", o);
+	if (warned)
+		fprintf(o, "<p class=\"note\">%d warning%s across the cases: each case's report lists its own, with what to "
+			   "do.</p>\n", warned, warned == 1 ? "" : "s");
 	fputs("<h2 id=\"summary\">Summary across cases</h2>\n<p class=\"note\">GPU ms: the median over every timed "
 	      "render of the case (frames \xc3\x97 timing.repeat), with the 10th to 90th percentile. PSNR from the mean "
 	      "MSE over frames. Each case links its own report.</p>\n<table>\n<tr><th>case</th><th>method</th>"

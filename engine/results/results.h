@@ -80,12 +80,16 @@ struct aa_method_summary {
 	double psnr_mean;          /* from mse_mean; NAN if every frame identical */
 	bool psnr_identical;
 	double ssim_mean;
+	double flip_mean;          /* mean over the frames that have a FLIP value, NAN when none */
 	double flicker_mean;       /* over frames 1.., NAN for one frame */
 	double over_threshold_mean; /* pixels over the job's over_threshold, mean over frames */
 	int best_frame, worst_frame; /* by PSNR (identical counts as best) */
 	double best_psnr, worst_psnr;
 };
 void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summary *out);
+/* PSNR of the reference's N/2- against its N-sample image from the mean MSE over its frames; NAN when none
+ * or identical (*identical says which). */
+double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical);
 /* Median and p-th percentile (0..100, linear interpolation) of n values (the array is not modified). */
 double aa_percentile(const double *values, int n, double p);
 

@@ -10,7 +10,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "results/front.h"
 #include "results/results.h"
+#include "results/warnings.h"
 #include "util/file_io.h"
 #include "methods/user_method.h"
 #include "methods/methods.h"
@@ -287,15 +289,11 @@ static json_t *metrics_json(struct builder *b, const struct aa_job_result *r, co
 
 	/* FLIP and the Fourier bands: means over the frames that have them. */
 	json_t *flip = json_object(), *flip_frames = json_array();
-	double flip_sum = 0, band_sum[AA_FOURIER_BANDS] = { 0 }, band_mean[AA_FOURIER_BANDS];
-	int flip_n = 0, band_n = 0;
+	double band_sum[AA_FOURIER_BANDS] = { 0 }, band_mean[AA_FOURIER_BANDS];
+	int band_n = 0;
 	for (int i = 0; i < m->frame_count; i++) {
 		const struct aa_metrics *fm = &m->frames[i].metrics;
 		push(b, flip_frames, num(fm->flip_mean));
-		if (isfinite(fm->flip_mean)) {
-			flip_sum += fm->flip_mean;
-			flip_n++;
-		}
 		bool bands_ok = true;
 		for (int k = 0; k < AA_FOURIER_BANDS; k++)
 			bands_ok = bands_ok && isfinite(fm->fourier[k]);
@@ -303,7 +301,7 @@ static json_t *metrics_json(struct builder *b, const struct aa_job_result *r, co
 			band_sum[k] += fm->fourier[k];
 		band_n += bands_ok;
 	}
-	put(b, flip, "mean", num(flip_n ? flip_sum / flip_n : NAN));
+	put(b, flip, "mean", num(s->flip_mean));
 	put(b, flip, "per_frame", flip_frames);
 	put(b, flip, "ppd", num(AA_FLIP_DEFAULT_PPD));
 	put(b, metrics, "flip", flip);
@@ -470,6 +468,11 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 	put(&b, root, "name", str(r->spec.name));
 	put(&b, root, "started_at", str(r->started_at));
 	put(&b, root, "wall_seconds", num(r->wall_seconds));
+	/* first, what a reader wants to know: the verdict, and the warnings that qualify it */
+	json_t *verdict = aa_verdict_json(r);
+	put(&b, root, "verdict", verdict ? json_incref(verdict) : NULL);
+	put(&b, root, "warnings", verdict ? aa_results_warnings_json(r, verdict) : NULL);
+	json_decref(verdict);
 	put(&b, root, "job", aa_job_spec_to_json(&r->spec));
 	/* for build farms: what run this was, which suite, and a hash of the work that equals another run's
 	 * exactly when both rendered the same job */
@@ -489,22 +492,14 @@ json_t *aa_results_to_json(const struct aa_job_result *r)
 	put(&b, root, "frames", json_integer(r->spec.frames));
 	put(&b, root, "first_frame", json_integer(r->spec.first_frame));
 	/* how times were taken: every method's frame `repeat` times, the order rotating each round */
-	put(&b, root, "timing", json_pack("{s:i, s:s, s:i}", "repeat", r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1,
-					  "order", "rotating", "timed_renders_per_method",
-					  r->spec.frames * (r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1)));
+	const int repeat = r->spec.timing_repeat > 0 ? r->spec.timing_repeat : 1;
+	put(&b, root, "timing", json_pack("{s:i, s:b, s:s, s:i, s:i}", "repeat", repeat, "auto", r->spec.timing_auto,
+					  "order", "rotating", "timed_renders_per_method", r->spec.frames * repeat,
+					  "min_timed_renders", AA_FRONT_MIN_TIMED_RENDERS));
 	for (int i = 0; i < r->plan_count && i < AA_MAX_PASSES; i++)
 		push(&b, plan, json_pack("{s:o, s:o, s:b}", "pass", str(r->plan[i].pass), "reason", str(r->plan[i].reason),
 					 "ran", r->plan[i].ran));
 	put(&b, root, "passes", plan);
-	json_t *warnings = json_array();
-	for (int i = 0; i < r->warning_count && i < AA_MAX_WARNINGS; i++)
-		push(&b, warnings, str(r->warnings[i]));
-	if (r->warnings_dropped > 0) {
-		char more[64];
-		snprintf(more, sizeof more, "... and %d more", r->warnings_dropped);
-		push(&b, warnings, str(more));
-	}
-	put(&b, root, "warnings", warnings);
 	put(&b, root, "reference", reference_json(&b, r));
 	for (int i = 0; i < r->method_count && i < AA_MAX_METHODS; i++)
 		push(&b, methods, method_json(&b, r, &r->methods[i]));

@@ -167,9 +167,13 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 	jstr(device, "name", out->device_name, sizeof out->device_name);
 	jstr(device, "driver", out->driver_info, sizeof out->driver_info);
 	out->timestamp_period_ns = jnum(device, "timestamp_period_ns");
-	/* the scene's warnings, as written: "... and N more" stands for those not kept */
+	/* the scene's warnings, as written (code "scene"; a string in older files): "... and N more" stands for
+	 * those not kept; the other warnings are computed again from the numbers */
 	json_array_foreach(json_object_get(doc, "warnings"), i, item) {
-		const char *w = json_string_value(item);
+		const char *code = json_string_value(json_object_get(item, "code"));
+		const char *w = json_is_string(item) ? json_string_value(item) :
+				code && (!strcmp(code, "scene") || !strcmp(code, "scene-warnings-capped")) ?
+				json_string_value(json_object_get(item, "message")) : NULL;
 		int more;
 		if (!w)
 			continue;
@@ -178,6 +182,8 @@ int aa_results_from_json(const json_t *doc, const json_t *curves_per_method, str
 		else if (out->warning_count < AA_MAX_WARNINGS)
 			snprintf(out->warnings[out->warning_count++], sizeof out->warnings[0], "%s", w);
 	}
+	/* timing.repeat "auto" is written as the repeat it chose: the flag is in timing.auto */
+	out->spec.timing_auto = json_is_true(json_object_get(json_object_get(doc, "timing"), "auto"));
 	if (need_array(doc, "passes", "passes", &v, err))
 		return -1;
 	json_array_foreach(v, i, item) {

@@ -123,7 +123,7 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 {
 	*out = (struct aa_method_summary){
 		.gpu_ms_median = NAN, .gpu_ms_p90 = NAN, .gpu_ms_mean = NAN, .cpu_ms_median = NAN,
-		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flicker_mean = NAN, .over_threshold_mean = NAN,
+		.mse_mean = NAN, .psnr_mean = NAN, .ssim_mean = NAN, .flip_mean = NAN, .flicker_mean = NAN, .over_threshold_mean = NAN,
 		.best_frame = -1, .worst_frame = -1, .best_psnr = NAN, .worst_psnr = NAN,
 	};
 	aa_timing_stats_of(NULL, 0, &out->gpu_ms);
@@ -132,13 +132,15 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	if (n <= 0)
 		return;
 	const int timed = m->timed && m->timed_count > n ? m->timed_count : n;
-	double *v = malloc((size_t)(4 * n + 2 * timed) * sizeof *v);
+	double *v = malloc((size_t)(5 * n + 2 * timed) * sizeof *v);
 	if (!v)
 		return;
-	double *mse = v, *ssim = v + n, *flicker = v + 2 * n, *over = v + 3 * n, *gpu = v + 4 * n, *cpu = gpu + timed;
+	double *mse = v, *ssim = v + n, *flicker = v + 2 * n, *over = v + 3 * n, *flip = v + 4 * n;
+	double *gpu = v + 5 * n, *cpu = gpu + timed;
 	for (int i = 0; i < n; i++) {
 		mse[i] = m->frames[i].metrics.identical ? 0.0 : m->frames[i].metrics.mse;
 		ssim[i] = m->frames[i].metrics.ssim;
+		flip[i] = m->frames[i].metrics.flip_mean;
 		flicker[i] = m->frames[i].flicker;
 		over[i] = m->frames[i].over_threshold >= 0 ? (double)m->frames[i].over_threshold : NAN;
 	}
@@ -150,6 +152,7 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	out->cpu_ms_median = out->cpu_ms.median;
 	out->mse_mean = finite_mean(mse, n);
 	out->ssim_mean = finite_mean(ssim, n);
+	out->flip_mean = finite_mean(flip, n);
 	out->flicker_mean = finite_mean(flicker, n); /* frame 0 has none (NAN) */
 	out->over_threshold_mean = finite_mean(over, n);
 	/* PSNR of the mean MSE, not the mean of PSNRs: one identical frame would make the latter infinite,
@@ -173,4 +176,19 @@ void aa_method_summarize(const struct aa_method_result *m, struct aa_method_summ
 	}
 	out->best_psnr = isfinite(best) ? best : NAN;
 	out->worst_psnr = isfinite(worst) ? worst : NAN;
+}
+
+double aa_reference_convergence_psnr(const struct aa_reference_result *ref, bool *identical)
+{
+	double sum = 0;
+	int n = 0;
+	for (int i = 0; ref->frames && i < ref->frame_count; i++) {
+		const double mse = ref->frames[i].convergence_identical ? 0.0 : ref->frames[i].convergence_mse;
+		if (isfinite(mse)) {
+			sum += mse;
+			n++;
+		}
+	}
+	*identical = n > 0 && sum == 0;
+	return n && sum > 0 ? aa_psnr_from_mse(sum / n, 255.0) : NAN;
 }

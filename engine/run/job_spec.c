@@ -12,6 +12,7 @@
 #include "methods/methods.h"
 #include "run/job_spec.h"
 #include "util/json_text.h"
+#include "util/suggest.h"
 
 /* first_frame is a frame index on the camera path; capped so first_frame + frames fits an int easily. */
 #define AA_MAX_FIRST_FRAME 10000000
@@ -47,11 +48,12 @@ static int check_keys(const json_t *obj, const char *path, const char *const *va
 			i++;
 		if (valid[i])
 			continue;
-		char list[512] = "", where[300], k[64];
+		char list[512] = "", where[300], k[64], mean[96];
 		for (i = 0; valid[i]; i++)
 			snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", valid[i]);
 		snprintf(where, sizeof where, "%s%s%s", path, *path ? "." : "", aa_shown_text(key, k, sizeof k));
-		return bad(err, AA_ERR_INVALID, where, "unknown key; valid keys: %s", list);
+		aa_suggest_text(key, valid, -1, mean, sizeof mean);
+		return bad(err, AA_ERR_INVALID, where, "unknown key%s; valid keys: %s", mean, list);
 	}
 	return 0;
 }
@@ -245,9 +247,11 @@ static int parse_method_object(const json_t *obj, const char *path, const struct
 		return parse_user_object(params, path, files, ms, err);
 	ms->method = aa_method_find(name);
 	if (!ms->method) {
+		char mean[96];
+		aa_method_suggest(name, mean, sizeof mean);
 		aa_method_list_names(known, sizeof known);
-		return bad(err, AA_ERR_NOT_FOUND, where, "unknown method \"%s\"; known methods: %s",
-			   aa_shown_text(name, text, sizeof text), known);
+		return bad(err, AA_ERR_NOT_FOUND, where, "unknown method \"%s\"%s; known methods: %s",
+			   aa_shown_text(name, text, sizeof text), mean, known);
 	}
 	aa_method_defaults(ms->method, &ms->params);
 
@@ -383,8 +387,16 @@ static int parse_timing(const json_t *v, struct aa_job_spec *s, struct aa_error 
 	if (check_keys(v, "timing", timing_keys, err) < 0)
 		return -1;
 	const json_t *repeat = json_object_get(v, "repeat");
+	if (json_is_string(repeat) && !strcmp(json_string_value(repeat), "auto")) {
+		s->timing_auto = true;
+		return 0;
+	}
+	if (json_is_string(repeat))
+		return bad(err, AA_ERR_INVALID, "timing.repeat", "expected an integer or \"auto\", got the string "
+			   "\"%.32s\"", json_string_value(repeat));
 	if (repeat && get_int(repeat, "timing.repeat", 1, AA_MAX_REPEAT, &s->timing_repeat, err) < 0)
 		return -1;
+	s->timing_auto = s->timing_auto && !repeat;
 	return 0;
 }
 
@@ -412,7 +424,7 @@ void aa_job_spec_defaults(struct aa_job_spec *spec)
 	spec->frames = 1;
 	spec->first_frame = 0;
 	spec->reference_samples = 64;
-	spec->timing_repeat = 1;
+	spec->timing_repeat = 1; /* a spec made in code times once; a job parsed from JSON defaults to "auto" */
 	spec->keep_frames = true;
 	spec->over_threshold = AA_OVER_THRESHOLD_DEFAULT;
 	spec->viewer = true;
@@ -466,6 +478,7 @@ int aa_job_spec_from_json_files(const json_t *job, const struct aa_file_source *
 	/* Parse into a copy so that a refused job leaves *spec as it was. */
 	struct aa_job_spec s;
 	aa_job_spec_defaults(&s);
+	s.timing_auto = true; /* timing.repeat "auto" unless the job says otherwise */
 	if (parse_job(job, files, &s, err) < 0) {
 		release_methods(&s);
 		return -1;
@@ -551,6 +564,8 @@ static int parse_job(const json_t *job, const struct aa_file_source *files, stru
 		return -1;
 	if ((v = json_object_get(job, "shard")) && parse_shard(v, &s, err) < 0)
 		return -1;
+	if (s.timing_auto) /* a suite's cases each get their own (aa_job_case) */
+		s.timing_repeat = aa_timing_auto_repeat(s.frames);
 	/* every timed render keeps its pass times: bound them as frames alone are bounded */
 	if ((long)s.frames * s.timing_repeat > AA_MAX_FRAMES)
 		return bad(err, AA_ERR_LIMIT, "timing.repeat", "%d frames x %d repeats is over %d timed renders per "
@@ -585,6 +600,8 @@ json_t *aa_job_spec_to_json(const struct aa_job_spec *spec)
 		json_object_set_new(job, "reference", json_pack("{s:s, s:f, s:i}", "samples", "auto", "target_psnr",
 								spec->reference_target_psnr, "max_samples",
 								spec->reference_samples));
+	if (job && spec->is_suite && spec->timing_auto) /* each case's repeat follows from its frames */
+		json_object_set_new(job, "timing", json_pack("{s:s}", "repeat", "auto"));
 	aa_job_suite_to_json(spec, job);
 	if (job && spec->shard_warmup >= 0) /* only when given: the canonical form of other jobs is as before */
 		json_object_set_new(job, "shard", json_pack("{s:i}", "warmup", spec->shard_warmup));
@@ -620,4 +637,12 @@ int aa_job_parse_keys(const json_t *obj, const char *path, const char *const *va
 int aa_job_parse_scene(const char *scene, const char *path, struct aa_error *err)
 {
 	return check_scene_syntax(scene, path, err);
+}
+
+int aa_timing_auto_repeat(int frames)
+{
+	if (frames < 1)
+		frames = 1;
+	const int repeat = (AA_MIN_TIMED_RENDERS + frames - 1) / frames;
+	return repeat < 1 ? 1 : repeat > AA_MAX_REPEAT ? AA_MAX_REPEAT : repeat;
 }

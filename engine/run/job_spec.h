@@ -4,7 +4,8 @@
 
 #include "types/job.h"
 
-/* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none. */
+/* Fills defaults: scene thin-wires, path default, 640x360, 1 frame, 64 reference samples, methods none and
+ * ssaa:16, each timed once. A job parsed from JSON has timing.repeat "auto" instead (aa_timing_auto_repeat). */
 void aa_job_spec_defaults(struct aa_job_spec *spec);
 /* Parses and validates a job object; every error names its field ("methods[1]", "size"). User methods
  * ("user:file=...") are refused: they need the _files form. */
@@ -20,6 +21,9 @@ void aa_job_spec_release(struct aa_job_spec *spec);
 bool aa_job_method_is_user(const json_t *method);
 void aa_job_spec_retain(const struct aa_job_spec *spec);
 json_t *aa_job_spec_to_json(const struct aa_job_spec *spec);
+/* timing.repeat "auto": the fewest repeats that give each method AA_MIN_TIMED_RENDERS timed renders over
+ * frames (5 for one frame, 2 for three, 1 from five on). */
+int aa_timing_auto_repeat(int frames);
 /* Parses "WIDTHxHEIGHT" ("640x360"), each 1..AA_MAX_SIZE; errors have path "size" (the CLI's --size). */
 int aa_parse_size(const char *text, int *w, int *h, struct aa_error *err);
 /* engine/run/job_suite.c: the parts of a job that make it a suite or name it for a farm. */

@@ -368,10 +368,10 @@ int aa_job_suite_from_json(const json_t *job, struct aa_job_spec *s, struct aa_e
 			snprintf(path, sizeof path, "%s", json_object_get(job, "scenes") ? "scenes" :
 							  json_object_get(job, "paths") ? "paths" : "sizes");
 		const struct aa_case_spec *c = &s->cases[i];
-		if ((long)c->frames * s->timing_repeat > AA_MAX_FRAMES)
+		const int repeat = s->timing_auto ? aa_timing_auto_repeat(c->frames) : s->timing_repeat;
+		if ((long)c->frames * repeat > AA_MAX_FRAMES)
 			return aa_error_set(err, AA_ERR_LIMIT, path, "%d frames x %d repeats is over %d timed renders per "
-					    "method; lower frames or timing.repeat", c->frames, s->timing_repeat,
-					    AA_MAX_FRAMES);
+					    "method; lower frames or timing.repeat", c->frames, repeat, AA_MAX_FRAMES);
 		aa_case_id(s, i, id, sizeof id);
 		aa_case_dirname(s, i, dir, sizeof dir);
 		for (int j = 0; j < i; j++) {
@@ -459,6 +459,8 @@ void aa_job_case(const struct aa_job_spec *spec, int i, struct aa_job_spec *out)
 	out->height = c->height;
 	out->frames = c->frames;
 	out->first_frame = c->first_frame;
+	if (spec->timing_auto)
+		out->timing_repeat = aa_timing_auto_repeat(c->frames);
 	out->is_suite = false;
 	out->case_count = 0;
 }
@@ -510,8 +512,18 @@ void aa_job_hash(const struct aa_job_spec *spec, char *out, size_t size)
 	}
 	for (int i = 0; i < spec->method_count && i < AA_MAX_METHODS; i++)
 		json_array_append_new(methods, json_string(spec->methods[i].label));
-	json_t *what = json_pack("{s:o, s:{s:i}, s:o, s:{s:i}}", "cases", cases, "reference", "samples",
-				 spec->reference_samples, "methods", methods, "timing", "repeat", spec->timing_repeat);
+	/* a suite's "auto" repeat is one per case, each following from the case's frames: the same work as
+	 * that number when every case has the same, else "auto" with the cases' frames */
+	int case_repeat = spec->timing_repeat;
+	bool varies = false;
+	for (int i = 0; spec->is_suite && spec->timing_auto && i < aa_job_case_count(spec); i++) {
+		const int r = aa_timing_auto_repeat(spec->cases[i].frames);
+		varies = varies || (i > 0 && r != case_repeat);
+		case_repeat = r;
+	}
+	json_t *repeat = varies ? json_string("auto") : json_integer(case_repeat);
+	json_t *what = json_pack("{s:o, s:{s:i}, s:o, s:{s:o}}", "cases", cases, "reference", "samples",
+				 spec->reference_samples, "methods", methods, "timing", "repeat", repeat);
 	if (what && spec->over_threshold != AA_OVER_THRESHOLD_DEFAULT) /* as given only: earlier hashes stay */
 		json_object_set_new(what, "over_threshold", json_real(spec->over_threshold));
 	if (what && spec->reference_auto) /* only then: the hash of other jobs is as before */

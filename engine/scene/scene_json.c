@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "image/image.h"
+#include "util/suggest.h"
 
 void sj_init(struct sj *s, const char *file, struct aa_error *err)
 {
@@ -122,32 +123,6 @@ int sj_expect_object(struct sj *s, const json_t *v)
 	return sj_fail(s, AA_ERR_INVALID, "expected an object, got %s", sj_describe(v, got, sizeof got));
 }
 
-/* Edit distance, so a typo like "colour" can suggest "color". */
-static int edit_distance(const char *a, const char *b)
-{
-	size_t la = strlen(a), lb = strlen(b);
-	if (la > 63 || lb > 63)
-		return 99;
-	int row[64];
-	for (size_t j = 0; j <= lb; j++)
-		row[j] = (int)j;
-	for (size_t i = 1; i <= la; i++) {
-		int diag = row[0];
-		row[0] = (int)i;
-		for (size_t j = 1; j <= lb; j++) {
-			int up = row[j];
-			int best = diag + (a[i - 1] != b[j - 1]);
-			if (row[j] + 1 < best)
-				best = row[j] + 1;
-			if (row[j - 1] + 1 < best)
-				best = row[j - 1] + 1;
-			row[j] = best;
-			diag = up;
-		}
-	}
-	return row[lb];
-}
-
 int sj_check_keys(struct sj *s, const json_t *obj, const char *const *valid)
 {
 	if (sj_expect_object(s, obj))
@@ -163,18 +138,12 @@ int sj_check_keys(struct sj *s, const json_t *obj, const char *const *valid)
 			continue;
 		char list[400];
 		size_t used = 0;
-		const char *suggest = NULL;
-		int best = 3;
 		for (int i = 0; valid[i]; i++) {
 			int n = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", valid[i]);
 			if (n > 0 && (size_t)n < sizeof list - used)
 				used += (size_t)n;
-			int d = edit_distance(key, valid[i]);
-			if (d < best && d < (int)strlen(valid[i])) {
-				best = d;
-				suggest = valid[i];
-			}
 		}
+		const char *suggest = aa_suggest(key, valid, -1);
 		if (suggest)
 			return sj_fail_key(s, key, AA_ERR_INVALID, "unknown key '%s' (did you mean '%s'? valid keys: %s)",
 					   key, suggest, list);

@@ -55,6 +55,9 @@ struct aa_job_spec {
 	int reference_samples;     /* N of the accumulated reference; N/2 is the convergence check */
 	int timing_repeat;         /* timing.repeat: each method's frame is rendered and timed this many times
 				    * (the first is scored); the reference is rendered once */
+	bool timing_auto;          /* timing.repeat "auto" (the default): timing_repeat is the fewest repeats
+				    * that give each method AA_MIN_TIMED_RENDERS timed renders over the frames
+				    * (aa_timing_auto_repeat), set for each case */
 	int method_count;
 	struct aa_method_spec methods[AA_MAX_METHODS];
 	bool keep_frames;          /* keep every frame's image in events (the CLI writes PNGs) */
@@ -104,6 +107,7 @@ struct aa_job_spec {
 #define AA_REFERENCE_AUTO_TARGET_PSNR 45.0  /* reference.target_psnr's default */
 #define AA_REFERENCE_AUTO_MAX_SAMPLES 256   /* reference.max_samples' default */
 #define AA_MAX_REPEAT 100
+#define AA_MIN_TIMED_RENDERS 5 /* fewer timed renders per method and its cost is not ranked */
 #define AA_MAX_SHARD_WARMUP 1000
 #define AA_OVER_THRESHOLD_DEFAULT 0.01 /* the report viewer's default: more than 2 of 255 levels */
 

@@ -1,4 +1,5 @@
 /* What messages about JSON input say of it: the type of a value, user text made safe to print. */
+#include <math.h>
 #include <ctype.h>
 
 #include "util/json_text.h"
@@ -28,3 +29,14 @@ const char *aa_json_type_name(const json_t *v)
 	return "an unknown value";
 }
 
+double aa_json_number(const json_t *obj, const char *key)
+{
+	const json_t *v = json_object_get(obj, key);
+	return json_is_number(v) ? json_number_value(v) : NAN;
+}
+
+const char *aa_json_string(const json_t *obj, const char *key)
+{
+	const char *s = json_string_value(json_object_get(obj, key));
+	return s ? s : "";
+}

@@ -56,13 +56,14 @@ try:
             check(status == 2 and key in err, "--%s %s is refused, naming the key (exit %d: %s)" %
                   (key, v, status, err.strip().splitlines()[0][:120] if err.strip() else ""))
 
-    # max-job-budget: width x height x frames x (reference samples + each method's samples)
+    # max-job-budget: width x height x frames x (reference samples + timing.repeat x each method's samples);
+    # timing.repeat "auto" times one frame 5 times (two frames 3 times)
     job = {"scene": "thin-wires", "size": "8x8", "frames": 1, "reference": {"samples": 4},
-           "methods": ["none", "ssaa:4"]}  # 64 x (4 + 1 + 4) = 576
-    d = Daemon("--max-job-budget", "576")
+           "methods": ["none", "ssaa:4"]}  # 64 x (4 + 5 x (1 + 4)) = 1856
+    d = Daemon("--max-job-budget", "1856")
     c = d.connect()
     r = c.request({"op": "submit", "job": job})
-    check(r.get("ok"), "a job of budget exactly max-job-budget (576) is accepted (%s)" % r.get("error"))
+    check(r.get("ok"), "a job of budget exactly max-job-budget (1856) is accepted (%s)" % r.get("error"))
     if r.get("ok"):
         wait_state(c, r["job"], ["done", "failed"])
     for what, change in [("two more reference samples", {"reference": {"samples": 6}}),

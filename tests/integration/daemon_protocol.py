@@ -152,8 +152,29 @@ try:
     r = t.request({"op": "ping"})
     check(r["error"]["code"] == "unauthorized" and r["error"]["path"] == "token", "TCP: ping before hello refused")
     r = t.request({"op": "hello", "version": 1, "token": "wrong"})
-    check(r["error"]["code"] == "unauthorized", "TCP: a wrong token is refused")
+    check(r["error"]["code"] == "unauthorized" and r["error"]["message"].startswith("wrong token"),
+          "TCP: a wrong token is refused as wrong (%s)" % r["error"]["message"])
     t.close()
+    t = Client(tcp=("127.0.0.1", d.tcp_port))
+    r = t.request({"op": "hello", "version": 1})
+    check(r["error"]["code"] == "unauthorized" and r["error"]["message"].startswith("no token") and
+          "AALAB_TOKEN" in r["error"]["message"], "TCP: hello without a token is told so, and how to send one")
+    t.close()
+    # the client: missing and wrong are told apart, with where a refused token came from and how to pass one
+    import subprocess
+    from daemon_lib import AALAB
+    env = {k: v for k, v in os.environ.items() if k not in ("AALAB_TOKEN", "AALAB_TOKEN_FILE")}
+    tcp = "tcp:127.0.0.1:%d" % d.tcp_port
+    p = subprocess.run([AALAB, "list", "--connect", tcp], env=env, capture_output=True, text=True)
+    check(p.returncode == 1 and "none was sent" in p.stderr and "--token-file" in p.stderr and
+          "AALAB_TOKEN" in p.stderr, "aalab without a token: says none was sent and how to pass one (%s)" % p.stderr.strip())
+    p = subprocess.run([AALAB, "list", "--connect", tcp], env=dict(env, AALAB_TOKEN="wrong"), capture_output=True,
+                       text=True)
+    check(p.returncode == 1 and "refused the token from $AALAB_TOKEN" in p.stderr,
+          "aalab with a wrong token: names where it came from (%s)" % p.stderr.strip())
+    p = subprocess.run([AALAB, "list", "--connect", tcp, "--token-file", token_file], env=dict(env, AALAB_TOKEN="wrong"),
+                       capture_output=True, text=True)
+    check(p.returncode == 0, "aalab list --token-file FILE: the file's token, over $AALAB_TOKEN (%s)" % p.stderr.strip())
     t = Client(tcp=("127.0.0.1", d.tcp_port))
     r = t.request({"op": "hello", "version": 1, "token": "s3cret-token-0123456789"})
     check(r.get("ok"), "TCP: hello with the token")

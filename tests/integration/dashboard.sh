@@ -17,6 +17,12 @@ grep -q "data-job=\"$id\"" "$TMP/dom.html" && pass "the page lists job $id" || {
 points=$(grep -o '<circle class="method"' "$TMP/dom.html" | wc -l)
 [ "$points" -eq 2 ] && pass "the chart has one point per method" || fail "chart points: $points"
 grep -q 'GPU ms per frame' "$TMP/dom.html" && grep -q 'ssaa:4' "$TMP/dom.html" && pass "axes and labels drawn" || fail "chart labels"
+# the verdict line is results.json's headline as it is, and the warnings follow it
+headline=$("$AALAB" get "$id" --connect "unix:$sock" --json | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)["verdict"]["headline"])')
+grep -qF "<p class=\"front\">verdict: $headline</p>" "$TMP/dom.html" && pass "the detail shows the verdict: $headline" ||
+	{ fail "verdict line '$headline' not shown"; grep -o '<div id="detail">.\{0,600\}' "$TMP/dom.html"; }
+grep -q '<li class="warning"><b>psnr-at-reference-noise</b>\|<li class="warning"><b>reference-not-converged</b>' "$TMP/dom.html" &&
+	pass "the detail lists the warnings (4-sample reference)" || fail "warnings not shown"
 browse --screenshot="$TMP/dashboard.png" --window-size=900,700 >/dev/null
 [ -s "$TMP/dashboard.png" ] && pass "screenshot taken" || fail "no screenshot"
 [ -n "$AALAB_KEEP_SCREENSHOT" ] && cp "$TMP/dashboard.png" "$AALAB_KEEP_SCREENSHOT"

@@ -75,7 +75,7 @@ try:
     local = os.path.join(tmp, "local")
     r = subprocess.run([AALAB, "run", "--local", "--exr", "--out", local] + JOB, capture_output=True, text=True)
     check(r.returncode == 0, "aalab run --local --exr: exit 0 (%s)" % r.stderr.strip()[-300:])
-    check("%px >0.05" in r.stdout, "the table has the %px column with its threshold")
+    check("px >5% off" in r.stdout, "the table has the column of pixels over the threshold, named by it")
     check_result(local, "in process")
 
     r = subprocess.run([AALAB, "run", "--exr", "--no-images", "--local", "--out", os.path.join(tmp, "x")] + JOB,

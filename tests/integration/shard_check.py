@@ -89,15 +89,22 @@ def compare(whole, merged, exact, tolerant, out=sys.stdout):
 # times, and where this run found its references (the store, or rendered): of the run, not of its results
 TIMES = {"gpu_ms", "cpu_ms", "p10", "p90", "min", "mean", "median", "n", "started_at", "wall_seconds",
          "timed_renders", "passes", "cache"}
+# what is computed from the times: the verdict (its front and ties rest on them), and the warnings about them
+FROM_TIMES = {"verdict"}
+TIME_WARNINGS = {"timing-spread"}
 
 
 def differences(x, y, path=""):
-    """Every value of two results documents that differs, but times and the store's outcomes (outside
-    metrics), as "path: x vs y"."""
+    """Every value of two results documents that differs, but times, the store's outcomes (outside
+    metrics) and what is computed from the times, as "path: x vs y"."""
     if isinstance(x, dict) and isinstance(y, dict):
         out = []
         for k in sorted(set(x) | set(y)):
-            if k in TIMES and ".metrics" not in path:
+            if (k in TIMES and ".metrics" not in path) or k in FROM_TIMES:
+                continue
+            if k == "warnings" and isinstance(x.get(k), list) and isinstance(y.get(k), list):
+                keep = lambda ws: [w for w in ws if not (isinstance(w, dict) and w.get("code") in TIME_WARNINGS)]
+                out += differences(keep(x[k]), keep(y[k]), path + "." + k)
                 continue
             if k not in x or k not in y:
                 out.append("%s.%s: only in one" % (path, k))

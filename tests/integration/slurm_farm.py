@@ -117,7 +117,7 @@ def main():
             if os.path.exists(os.path.join(farm, "logs", name)) else ""
         check(all(os.path.exists(os.path.join(farm, "shards", str(i), "results.json")) for i in (0, 1, 3)),
               "shards 0, 1 and 3 ran as array tasks")
-        check("aalab run: rendering" in log("shard-0.log") and "(100%)" in log("shard-0.log"),
+        check("aalab run: rendering" in log("shard-0.log") and "(100%, ETA" in log("shard-0.log"),
               "a shard's log shows its progress to 100%: " + log("shard-0.log").strip()[-200:])
         check("not a folder" in log("shard-2.log") or "shards/2" in log("shard-2.log"),
               "shard 2's task failed: " + log("shard-2.log").strip()[:200])

@@ -23,10 +23,13 @@ UNIT_TESTS = \
 	tests/unit/test_results \
 	tests/unit/test_report_viewer \
 	tests/unit/test_verdicts \
+	tests/unit/test_front \
+	tests/unit/test_warnings \
 	tests/unit/test_farm \
 	tests/unit/test_shard \
 	tests/unit/test_reference_key \
-	tests/unit/test_reference_cache
+	tests/unit/test_reference_cache \
+	tests/unit/test_compare_arithmetic
 # what each pins:
 #  math, draw_order: matrices and the order transparent draws sort in
 #  metrics, flip, fourier: PSNR/SSIM on images with known answers, FLIP and the Fourier bands
@@ -39,9 +42,12 @@ UNIT_TESTS = \
 #  smaa_textures, rsaa_table: SMAA's generated look-up textures; RSAA's offset table and SADP
 #  user_method: method files, parameters, the GLSL of a pass, SHA-256, compiling and the SPIR-V cache
 #  debug_targets_count: the non-finite count on hand-made half, float and depth texels
-#  results, report_viewer: results.json, the warnings panel, the viewer's data, worst regions, EXR frames
+#  results, report_viewer: results.json, the verdict and warnings panel, the viewer's data, worst regions,
+#  EXR frames
+#  front, warnings: the cost-quality front and its text; results.json's warnings[], each and its absence
 #  verdicts, farm, shard: hard cases' verdicts, suites/labels/baselines/compare, shards and merging
 #  reference_key, reference_cache: each part of a reference's key changes it; the store's entries (damaged
 #    ones found and removed, writers of one key at once, least recently used out past the size)
+#  compare_arithmetic: every number aalab compare prints, worked out by hand; what it refuses
 check_PROGRAMS += $(UNIT_TESTS) tests/tools/metrics_tool
 TESTS += $(UNIT_TESTS)

@@ -89,7 +89,10 @@ static void test_matrix(void **state)
 	assert_int_equal(one.frames, 3);
 	assert_string_equal(aa_job_label(&one, "commit"), "1a2b");
 	assert_null(aa_job_label(&one, "machine"));
-	assert_int_equal(aa_suite_total_units(&s), 8 * 3 * 2);
+	/* 8 cases of 3 frames, each frame a reference and the method's renders: timing.repeat "auto" gives
+	 * 3 frames 2 repeats, so that the method has 6 >= 5 timed renders */
+	assert_int_equal(one.timing_repeat, 2);
+	assert_int_equal(aa_suite_total_units(&s), 8 * 3 * (1 + 2));
 
 	/* the canonical form lists the cases and parses back to the same job */
 	json_t *j = aa_job_spec_to_json(&s);

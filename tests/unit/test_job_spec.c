@@ -90,7 +90,8 @@ static void test_defaults(void **state)
 	assert_int_equal(s.frames, 1);
 	assert_int_equal(s.first_frame, 0);
 	assert_int_equal(s.reference_samples, 64);
-	assert_int_equal(s.timing_repeat, 1);
+	assert_int_equal(s.timing_repeat, 1); /* a spec made in code times once */
+	assert_false(s.timing_auto);
 	assert_true(s.keep_frames);
 	assert_int_equal(s.method_count, 2);
 	assert_string_equal(s.methods[0].method->name, "none");
@@ -98,11 +99,25 @@ static void test_defaults(void **state)
 	assert_string_equal(s.methods[1].label, "ssaa:16");
 	assert_string_equal(s.name, "");
 
-	/* An empty job object means all defaults. */
+	/* An empty job object means all defaults, but for timing.repeat "auto": 5 repeats of one frame give
+	 * each method 5 timed renders; 2 of three frames give 6, 1 of five frames 5 */
 	struct aa_job_spec p;
 	struct aa_error err;
 	assert_int_equal(parse_text("{}", &p, &err), 0);
+	assert_true(p.timing_auto);
+	assert_int_equal(p.timing_repeat, 5);
+	s.timing_auto = true;
+	s.timing_repeat = 5;
 	assert_spec_equal(&s, &p);
+	assert_int_equal(parse_text("{\"frames\": 3}", &p, &err), 0);
+	assert_int_equal(p.timing_repeat, 2);
+	assert_int_equal(parse_text("{\"frames\": 5}", &p, &err), 0);
+	assert_int_equal(p.timing_repeat, 1);
+	assert_int_equal(parse_text("{\"frames\": 4, \"timing\": {\"repeat\": \"auto\"}}", &p, &err), 0);
+	assert_int_equal(p.timing_repeat, 2);
+	assert_int_equal(parse_text("{\"frames\": 1, \"timing\": {\"repeat\": 1}}", &p, &err), 0);
+	assert_int_equal(p.timing_repeat, 1);
+	assert_false(p.timing_auto);
 }
 
 static void test_good_job(void **state)
@@ -185,7 +200,12 @@ static const struct bad_case bad_cases[] = {
 	{ "{\"reference\": {\"samples\": 63}}", AA_ERR_INVALID, "reference.samples", "reference.samples: 63 is odd" },
 	{ "{\"reference\": {\"samples\": 1}}", AA_ERR_INVALID, "reference.samples", "valid range: 2 to 4096" },
 	{ "{\"reference\": {\"samples\": 8192}}", AA_ERR_LIMIT, "reference.samples", "8192 is out of range" },
-	{ "{\"reference\": {\"sample\": 8}}", AA_ERR_INVALID, "reference.sample", "unknown key; valid keys: samples" },
+	{ "{\"reference\": {\"sample\": 8}}", AA_ERR_INVALID, "reference.sample",
+	  "unknown key (did you mean 'samples'?); valid keys: samples" },
+	{ "{\"frame\": 8}", AA_ERR_INVALID, "frame", "frame: unknown key (did you mean 'frames'?); valid keys: scene" },
+	{ "{\"methods\": [\"smma\"]}", AA_ERR_NOT_FOUND, "methods[0]", "unknown method \"smma\" (did you mean 'smaa'?)" },
+	{ "{\"methods\": [\"fxaa:preest=12\"]}", AA_ERR_INVALID, "methods[0]",
+	  "fxaa: unknown parameter \"preest\" (did you mean 'preset'?); valid parameters: preset" },
 	{ "{\"reference\": {\"samples\": \"many\"}}", AA_ERR_INVALID, "reference.samples", "expected an even integer or \"auto\"" },
 	{ "{\"reference\": {\"samples\": \"auto\", \"target_psnr\": 10}}", AA_ERR_INVALID, "reference.target_psnr", "10 is out of range; valid range: 20 to 80 dB" },
 	{ "{\"reference\": {\"samples\": \"auto\", \"target_psnr\": \"45\"}}", AA_ERR_INVALID, "reference.target_psnr", "expected a number of dB, got a string" },
@@ -224,9 +244,11 @@ static const struct bad_case bad_cases[] = {
 	  "unknown method \"nosuch-aa\"; known methods: " },
 	{ "{\"keep_frames\": 1}", AA_ERR_INVALID, "keep_frames", "keep_frames: expected true or false, got an integer" },
 	{ "{\"timing\": 5}", AA_ERR_INVALID, "timing", "timing: expected an object like {\"repeat\": 5}" },
-	{ "{\"timing\": {\"repeats\": 5}}", AA_ERR_INVALID, "timing.repeats", "unknown key; valid keys: repeat" },
+	{ "{\"timing\": {\"repeats\": 5}}", AA_ERR_INVALID, "timing.repeats",
+	  "unknown key (did you mean 'repeat'?); valid keys: repeat" },
 	{ "{\"timing\": {\"repeat\": 0}}", AA_ERR_INVALID, "timing.repeat", "0 is out of range; valid range: 1 to 100" },
-	{ "{\"timing\": {\"repeat\": \"3\"}}", AA_ERR_INVALID, "timing.repeat", "expected an integer, got a string" },
+	{ "{\"timing\": {\"repeat\": \"3\"}}", AA_ERR_INVALID, "timing.repeat", "expected an integer or \"auto\", got the string \"3\"" },
+	{ "{\"timing\": {\"repeat\": 1.5}}", AA_ERR_INVALID, "timing.repeat", "expected an integer, got a number with a fraction" },
 	{ "{\"frames\": 2000, \"timing\": {\"repeat\": 51}}", AA_ERR_LIMIT, "timing.repeat",
 	  "2000 frames x 51 repeats is over 100000 timed renders per method" },
 	{ "{\"name\": null}", AA_ERR_INVALID, "name", "name: expected a string, got null" },
@@ -396,11 +418,13 @@ static void test_method_parse_registry(void **state)
 	assert_int_equal(aa_method_parse("none", "m", &m, &p, &err), 0);
 	assert_string_equal(m->name, "none");
 
-	/* The message lists every registered method, whichever the registry holds. */
+	/* The message lists every registered method, whichever the registry holds, and user methods. */
 	char expected[1024] = "methods[3]: unknown method \"nosuch-aa\"; known methods: ";
 	for (int i = 0; i < aa_method_count; i++)
 		snprintf(expected + strlen(expected), sizeof expected - strlen(expected), "%s%s", i ? ", " : "",
 			 aa_methods[i]->name);
+	snprintf(expected + strlen(expected), sizeof expected - strlen(expected),
+		 ", user:file=FILE.json (docs/user-methods.md)");
 	m = NULL;
 	assert_int_equal(aa_method_parse("nosuch-aa:preset=39", "methods[3]", &m, &p, &err), -1);
 	assert_null(m);

@@ -1,4 +1,4 @@
-/* report.html's viewer parts on hand-made results: the warnings panel (each warning and its absence),
+/* report.html's parts on hand-made results: the verdict and warnings panel (escaped, and absent warnings),
  * the viewer's JSON data (escaped so no label ends the script), viewer/NNNN.js (the frame's PNG bytes
  * as data: URLs), the worst regions read back from FLIP maps, and the EXR of a frame event. */
 #include <ftw.h>
@@ -95,77 +95,42 @@ static void free_result(struct aa_job_result *r)
 	free(r);
 }
 
-static char *warnings_of(const struct aa_job_result *r, const struct aa_method_summary *sum)
+static char *panel_of(const json_t *verdict, const json_t *warnings)
 {
 	char *buf = NULL;
 	size_t size = 0;
 	FILE *o = open_memstream(&buf, &size);
-	aa_report_write_warnings(o, r, sum);
+	aa_report_write_verdict(o, verdict, warnings);
 	fclose(o);
 	return buf;
 }
 
-static void set_times(struct aa_method_summary *s, double p10, double median, double p90)
-{
-	s->gpu_ms = (struct aa_timing_stats){ .median = median, .p10 = p10, .p90 = p90, .min = p10, .mean = median, .n = 8 };
-	s->gpu_ms_median = median;
-}
-
-static void test_warnings(void **state)
+/* The top of the page says the verdict and the warnings as results.json has them, escaped; no warnings,
+ * no warnings panel. */
+static void test_verdict_panel(void **state)
 {
 	(void)state;
-	struct aa_job_result *r = make_result(2);
-	struct aa_method_summary sum[2] = { { .psnr_mean = 31 }, { .psnr_mean = NAN, .psnr_identical = true } };
-	set_times(&sum[0], 1.0, 1.2, 1.5);
-	set_times(&sum[1], 1.6, 2.0, 2.5);
-	char *html = warnings_of(r, sum);
-	assert_string_equal(html, ""); /* nothing to warn about: no panel at all */
-	free(html);
-
-	/* Convergence MSE 13.0 -> 36.99 dB: not converged, and 31 dB is not within 3 dB of it. */
-	for (int f = 0; f < 2; f++)
-		r->reference.frames[f].convergence_mse = 13.0;
-	html = warnings_of(r, sum);
-	assert_non_null(strstr(html, "<section id=\"warnings\""));
-	assert_non_null(strstr(html, "not converged"));
-	assert_non_null(strstr(html, "by 36.9 dB PSNR") ? strstr(html, "by 36.9 dB PSNR") : strstr(html, "by 37.0 dB PSNR"));
-	assert_null(strstr(html, "scores"));
-	free(html);
-	sum[0].psnr_mean = 34.5; /* within 3 dB of 37: its PSNR measures the reference's noise */
-	html = warnings_of(r, sum);
-	assert_non_null(strstr(html, "plain scores 34.5 dB"));
-	free(html);
-	for (int f = 0; f < 2; f++)
-		r->reference.frames[f].convergence_mse = 0.01;
-
-	/* p90 of the cheaper one (1.5) reaches the p10 of the dearer one (1.4): cannot be ranked. */
-	set_times(&sum[1], 1.4, 2.0, 2.5);
-	html = warnings_of(r, sum);
-	assert_non_null(strstr(html, "Timing too spread to rank"));
-	assert_non_null(strstr(html, "plain and &lt;/script&gt;&lt;!--&lt;script&gt;x"));
+	json_t *verdict = json_pack("{s:s, s:[s], s:{s:i}}", "headline", "front: plain, </script><!--<script>x",
+				    "lines", "a & b: 1.00 dB less PSNR than <c>", "rule", "min_timed_renders", 5);
+	json_t *none = json_array();
+	char *html = panel_of(verdict, none);
+	json_decref(none);
+	assert_non_null(strstr(html, "<section id=\"verdict\""));
+	assert_non_null(strstr(html, "<p class=\"headline\">front: plain, &lt;/script&gt;&lt;!--&lt;script&gt;x</p>"));
+	assert_non_null(strstr(html, "<li>a &amp; b: 1.00 dB less PSNR than &lt;c&gt;</li>"));
+	assert_non_null(strstr(html, "fewer than 5 timed renders"));
+	assert_null(strstr(html, "id=\"warnings\""));
 	assert_null(strstr(html, "</script>"));
 	free(html);
-	set_times(&sum[1], 1.6, 2.0, 2.5);
-
-	/* the scene's own warnings come first, escaped, and the count of those not kept */
-	r->warning_count = 1;
-	snprintf(r->warnings[0], sizeof r->warnings[0], "material <glass> approximated");
-	r->warnings_dropped = 4;
-	html = warnings_of(r, sum);
-	assert_non_null(strstr(html, "<b>Scene</b>: material &lt;glass&gt; approximated"));
-	assert_non_null(strstr(html, "... and 4 more scene warnings"));
+	json_t *warnings = json_pack("[{s:s, s:s, s:s}]", "code", "scene", "message", "material <glass> approximated",
+				     "action", "fix <it>");
+	html = panel_of(verdict, warnings);
+	assert_non_null(strstr(html, "<section id=\"warnings\""));
+	assert_non_null(strstr(html, "<li><b>scene</b>: material &lt;glass&gt; approximated<br><span class=\"todo\">"
+				     "What to do: fix &lt;it&gt;</span></li>"));
 	free(html);
-	r->warning_count = 0;
-	r->warnings_dropped = 0;
-
-	r->methods[1].frames[1].nonfinite = 7;
-	r->timestamp_period_ns = NAN;
-	html = warnings_of(r, sum);
-	assert_non_null(strstr(html, "wrote <b>7 NaN or Inf values</b>"));
-	assert_non_null(strstr(html, "No GPU timestamps"));
-	assert_null(strstr(html, "Timing"));
-	free(html);
-	free_result(r);
+	json_decref(verdict);
+	json_decref(warnings);
 }
 
 /* The JSON inside <script type="application/json" id="aa-viewer-data">. */
@@ -428,7 +393,7 @@ static void test_spread_labels(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_warnings),
+		cmocka_unit_test(test_verdict_panel),
 		cmocka_unit_test(test_viewer_data),
 		cmocka_unit_test(test_viewer_frames),
 		cmocka_unit_test(test_worst_regions),
