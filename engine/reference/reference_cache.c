@@ -413,14 +413,6 @@ int aa_reference_cache_put(struct aa_reference_cache *c, const uint8_t key[32], 
 	for (int i = 0; i < e->plane_count; i++)
 		parts[count_parts++] = (struct aa_file_part){e->planes[i], plane_bytes};
 	parts[count_parts++] = (struct aa_file_part){trailer, sizeof trailer};
-	char hex[65], sub[2100], name[80];
-	aa_sha256_digest_hex(key, hex);
-	snprintf(sub, sizeof sub, "%s/%.2s", c->dir, hex);
-	snprintf(name, sizeof name, "%s.ref", hex);
-	if (aa_file_make_dirs(sub, err) || aa_file_write_atomic(sub, name, parts, count_parts, err)) {
-		aa_error_prefix(err, "reference cache");
-		return -1;
-	}
 	const uint64_t written = sizeof header + recipe + plane_bytes * e->plane_count + sizeof trailer;
 	/* the store never takes the last of a disk that results (and aalabd's job states) are written to:
 	 * an entry that would leave under 64 MiB, or 5% of the file system, free is not written */
@@ -431,6 +423,14 @@ int aa_reference_cache_put(struct aa_reference_cache *c, const uint8_t key[32], 
 		if (avail < written + margin)
 			return aa_error_set(err, AA_ERR_IO, "", "reference cache: not stored: %s would have under %llu MiB "
 					    "free", c->dir, (unsigned long long)(margin >> 20));
+	}
+	char hex[65], sub[2100], name[80];
+	aa_sha256_digest_hex(key, hex);
+	snprintf(sub, sizeof sub, "%s/%.2s", c->dir, hex);
+	snprintf(name, sizeof name, "%s.ref", hex);
+	if (aa_file_make_dirs(sub, err) || aa_file_write_atomic(sub, name, parts, count_parts, err)) {
+		aa_error_prefix(err, "reference cache");
+		return -1;
 	}
 	count(c, &c->stats.bytes_written, written);
 	pthread_mutex_lock(&c->lock);
