@@ -282,7 +282,7 @@ int cmd_run(int argc, char **argv)
 	}
 	snprintf(dir, sizeof dir, "%s", od.final);
 	if (conn) {
-		aa_out_dir_on_interrupt(&od, NULL, 0);
+		aa_out_dir_on_interrupt(&od, true, NULL, 0);
 		status = aa_run_remote(conn, job, od.work, od.final, images, print_json, quiet);
 		if (status == AA_EXIT_OK && aa_out_dir_commit(&od, cerr, sizeof cerr)) {
 			fprintf(stderr, "aalab run: %s\n", cerr);
@@ -328,7 +328,7 @@ int cmd_run(int argc, char **argv)
 		aa_job_case(&spec, i, &one);
 		frames_total += one.frames * (1 + one.method_count);
 	}
-	aa_out_dir_on_interrupt(&od, ro.images ? &ro.frames_written : NULL, frames_total);
+	aa_out_dir_on_interrupt(&od, false, ro.images ? &ro.frames_written : NULL, frames_total);
 	struct aa_suite_result *result = NULL;
 	rc = aa_suite_run(engine, &spec, NULL, NULL, on_event, &ro, &result, &err);
 	if (!quiet)

@@ -213,7 +213,7 @@ static void on_interrupt(int sig)
 	_exit(130);
 }
 
-void aa_out_dir_on_interrupt(struct aa_out_dir *o, volatile int *frames_written, int frames_total)
+void aa_out_dir_on_interrupt(struct aa_out_dir *o, bool in_daemon, volatile int *frames_written, int frames_total)
 {
 	const char *dir_state = o->replace ? "still holds the earlier result" : "was not written";
 	if (frames_written) {
@@ -222,8 +222,8 @@ void aa_out_dir_on_interrupt(struct aa_out_dir *o, volatile int *frames_written,
 			 "results.json); %s %s\n", frames_total, o->work, o->final, dir_state);
 	} else {
 		snprintf(interrupt_head, sizeof interrupt_head, "\naalab run: interrupted; what was written so far "
-			 "is in %s (no results.json; the job goes on in aalabd: aalab cancel); %s %s\n", o->work,
-			 o->final, dir_state);
+			 "is in %s (no results.json%s); %s %s\n", o->work,
+			 in_daemon ? "; the job goes on in aalabd: aalab cancel" : "", o->final, dir_state);
 		interrupt_tail[0] = 0;
 	}
 	interrupt_frames = frames_written;

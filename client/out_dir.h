@@ -21,6 +21,6 @@ int aa_out_dir_commit(struct aa_out_dir *o, char *err, size_t err_size);
 void aa_out_dir_discard(struct aa_out_dir *o);
 /* Ctrl-C (SIGINT) and SIGTERM from here on print what was kept (the temporary folder, with the frames
  * written so far: frames_written, counted by the caller, or NULL when the job runs on aalabd) and exit 130. */
-void aa_out_dir_on_interrupt(struct aa_out_dir *o, volatile int *frames_written, int frames_total);
+void aa_out_dir_on_interrupt(struct aa_out_dir *o, bool in_daemon, volatile int *frames_written, int frames_total);
 
 #endif

@@ -51,4 +51,22 @@ expect_stderr "interrupted; kept [0-9]+ of 600 frames' images, written so far, i
 	"Ctrl-C says what was kept and where"
 [ -f "$TMP/res/results.json" ] && [ ! -f "$TMP/res/marker" ] && pass "DIR still holds the earlier complete result" \
 	|| fail "DIR was changed by the interrupted run"
+
+# the same without images: nothing is counted, and a job run in-process does not "go on in aalabd"
+"$AALAB" run --local --quiet --no-images --scene thin-wires --methods none,ssaa:4 --frames 5000 --size 160x90 \
+	--reference-samples 4 --out "$TMP/res" --force >"$TMP/out" 2>"$TMP/err" &
+pid=$!
+for i in $(seq 1 300); do
+	ls -d "$TMP"/.res.aalab-partial.* >/dev/null 2>&1 && break
+	sleep 0.1
+done
+sleep 1
+kill -INT $pid
+wait $pid
+status=$?
+[ "$status" -eq 130 ] && pass "Ctrl-C without images: exit 130" || fail "Ctrl-C without images: exit $status"
+expect_stderr "interrupted; what was written so far is in .*\.res\.aalab-partial\.[A-Za-z0-9]+ \(no results.json\); " \
+	"Ctrl-C without images says where the partial folder is"
+if grep -q aalabd "$TMP/err"; then fail "an in-process run speaks of aalabd: $(cat "$TMP/err")"
+else pass "an in-process run does not speak of aalabd"; fi
 finish
