@@ -131,7 +131,7 @@ void conn_close(struct conn *c)
 	c->fd = -1;
 	if (c->watch_job) {
 		pthread_mutex_lock(&c->d->store->lock);
-		c->watch_job->watchers--;
+		job_release(c->d->store, c->watch_job);
 		pthread_mutex_unlock(&c->d->store->lock);
 		c->watch_job = NULL;
 	}

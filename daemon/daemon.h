@@ -1,6 +1,8 @@
 /* aalabd's shared state: the configuration, the listeners, the client connections and the job store.
  * The event loop thread owns connections and listeners; the job store is shared with the GPU worker
- * under store.lock (jobs.h). */
+ * under store.lock (jobs.h). The store owns every job: a job pointer outlives an unlock only while its
+ * user holds the job (job_hold/job_release); the full rule, and who the holders are, is in jobs.h beside
+ * struct job, where every user of a job reads it. */
 #ifndef AALABD_DAEMON_H
 #define AALABD_DAEMON_H
 
@@ -80,7 +82,7 @@ struct conn {
 	size_t out_head, out_len, out_cap;
 	double accepted_ms, last_input_ms, last_output_ms, partial_since_ms;
 	bool close_after_flush, closed, eof;
-	/* the one watch this connection may run */
+	/* the one watch this connection may run; the connection holds the job while it watches (jobs.h) */
 	struct job *watch_job;
 	unsigned long watch_next_seq;
 	json_t *watch_tag;

@@ -544,6 +544,18 @@ static void delete_job(struct store *s, struct job *victim)
 	job_free(victim);
 }
 
+void job_hold(struct job *job)
+{
+	job->holds++;
+}
+
+void job_release(struct store *s, struct job *job)
+{
+	job->holds--;
+	if (job_state_final(job->state))
+		store_apply_retention(s); /* a job kept past the limits only because it was held goes now */
+}
+
 void store_apply_retention(struct store *s)
 {
 	for (;;) {
@@ -554,7 +566,7 @@ void store_apply_retention(struct store *s)
 			if (job_state_final(j->state)) {
 				finished++;
 				bytes += j->bytes;
-				if (!oldest && j->watchers == 0)
+				if (!oldest && j->holds == 0)
 					oldest = j;
 			}
 		bool over = (s->retention_jobs > 0 && finished > s->retention_jobs) ||

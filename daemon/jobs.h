@@ -37,9 +37,24 @@ struct job {
 	unsigned long event_count, event_cap;
 	bool log_complete;        /* the last event (finished, failed, cancelled) is in the log */
 	bool events_loaded;       /* events of a job finished before this run were read from events.jsonl */
-	int watchers;             /* connections watching (a job is not deleted while watched) */
+	int holds;                /* references beyond one locked section (the ownership rule below) */
 	struct job *next;         /* store list, oldest first */
 };
+
+/* Who owns a job, and how long a pointer to one may be used (every file of the daemon follows this):
+ * - The store owns every struct job. Only the store frees one: retention (store_apply_retention, through
+ *   job_release) and store_close, always with store.lock held.
+ * - A job pointer found under store.lock may be used only until that lock is released, unless its user
+ *   holds the job (job_hold). A held job is never freed: retention skips it.
+ * - The holders, and nothing else keeps a job pointer across unlocking:
+ *     each connection watching the job (conn.watch_job), from `watch` until watch_end or its close;
+ *     the GPU worker (store.running), from taking the job off the queue until its final state, job.json
+ *     and event log are written (worker_run_end).
+ * - job_release may free the job (the last holder applies retention): the pointer is dead after it, so
+ *   copy what is still needed (the id) first. */
+struct store;
+void job_hold(struct job *job);                     /* lock held */
+void job_release(struct store *s, struct job *job); /* lock held; may free the job */
 
 struct scene_cache;
 struct worker_process;
@@ -56,7 +71,7 @@ struct store {
 	unsigned long next_id;
 	bool worker_stop;         /* finish the running job, take no new one */
 	bool worker_exited;
-	struct job *running;
+	struct job *running;      /* held by the worker while it runs the job (job_hold) */
 	struct aa_engine *engine;
 	struct scene_cache *scenes;
 	struct loop *loop;        /* woken after every change a client may be waiting for */
@@ -115,7 +130,7 @@ int store_rewrite_events(struct store *s, struct job *job);
 void store_append_event(struct store *s, struct job *job, char *line);
 /* Loads the event log of a job finished before this run from events.jsonl (lock held). */
 void store_load_events(struct store *s, struct job *job);
-/* Deletes the oldest finished jobs beyond the retention limits (lock held). */
+/* Deletes the oldest finished jobs beyond the retention limits that nobody holds (lock held). */
 void store_apply_retention(struct store *s);
 json_t *job_to_json(const struct job *job); /* lock held */
 uint64_t store_measure(struct store *s, struct job *job);    /* bytes of the job directory */

@@ -469,7 +469,7 @@ static void op_watch(struct conn *c, json_t *msg, json_t *tag)
 	if (!job)
 		return;
 	store_load_events(c->d->store, job);
-	job->watchers++;
+	job_hold(job);
 	c->watch_job = job;
 	c->watch_next_seq = after ? (unsigned long)json_integer_value(after) + 1 : 1;
 	c->watch_frames = fmt;

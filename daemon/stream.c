@@ -250,19 +250,22 @@ void protocol_pump_watch(struct conn *c)
 		struct job *job = c->watch_job;
 		char *line = NULL;
 		bool end = false;
+		char id[sizeof job->id];
+		snprintf(id, sizeof id, "%s", job->id);
 		if (c->watch_next_seq <= job->event_count)
 			line = strdup(job->events[c->watch_next_seq - 1]);
 		else
 			end = job->log_complete;
-		if (end)
-			job->watchers--;
+		if (end) {
+			job_release(s, job); /* the job may be gone from here on (jobs.h) */
+			c->watch_job = NULL;
+		}
 		pthread_mutex_unlock(&s->lock);
 		if (end) {
-			json_t *o = json_pack("{ss ss sI}", "event", "watch_end", "job", job->id, "frames_dropped",
+			json_t *o = json_pack("{ss ss sI}", "event", "watch_end", "job", id, "frames_dropped",
 					      (json_int_t)c->frames_dropped);
 			if (c->watch_tag)
 				json_object_set(o, "tag", c->watch_tag);
-			c->watch_job = NULL;
 			conn_send_json(c, o);
 			conn_finish_watch(c);
 			return;

@@ -392,7 +392,10 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	job->state = final_state;
 	job->log_complete = true;
 	store_save(s, job);
-	store_apply_retention(s);
+	/* the worker lets go of the job (jobs.h): retention may delete it right here */
+	s->running = NULL;
+	job_release(s, job);
+	run->job = NULL;
 	pthread_mutex_unlock(&s->lock);
 	loop_wake(s->loop);
 }
@@ -467,6 +470,7 @@ static void *worker_main(void *arg)
 			free(job->events[i]);
 		job->event_count = 0;
 		job->log_complete = false;
+		job_hold(job); /* until worker_run_end: nothing may free it while it runs (jobs.h) */
 		s->running = job;
 		store_save(s, job);
 		pthread_mutex_unlock(&s->lock);
@@ -475,8 +479,8 @@ static void *worker_main(void *arg)
 			worker_process_run_job(s, job);
 		else
 			run_job(s, job);
+		job = NULL; /* let go of in worker_run_end */
 		pthread_mutex_lock(&s->lock);
-		s->running = NULL;
 	}
 	pthread_mutex_unlock(&s->lock);
 	if (s->use_process)

@@ -40,7 +40,8 @@ void worker_run_begin(struct store *s, struct job *job, struct worker_run *run);
 /* Gives ev the job's id and next sequence number, logs it and wakes the event loop (steals ev). */
 int worker_publish(struct worker_run *run, json_t *ev);
 int worker_progress(struct worker_run *run, int done, int total);
-/* Takes out->summary. */
+/* Takes out->summary. The worker's hold on the job ends here (jobs.h): run->job is NULL afterwards and
+ * the job may already be deleted by retention. */
 void worker_run_end(struct worker_run *run, struct worker_outcome *out);
 
 /* worker_process.c: the worker process (allow-user-methods). */
