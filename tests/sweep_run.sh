@@ -90,10 +90,11 @@ for c in r["cases"]:
 assert out.count("  msaa family front: ") == 2, out
 PY
 
-# past the limit: refused before anything runs, naming the entry and the parameter
-expect_status 2 "a sweep past 16 methods is refused" -- "$AALAB" run --local --methods \
-	'none,ssaa,fxaa:preset=10|12|15|20|23|25|29|39,subpix=0|0.5' --size 96x54 --out "$TMP/d"
-expect_stderr "methods\[2\]: fxaa: subpix lists 2 values, which makes the sweep 16 configurations; the job has room for 14" \
+# past the limit (40 configurations, over any job's methods): refused before anything runs, naming the
+# entry and the parameter
+expect_status 2 "a sweep past a job's methods is refused" -- "$AALAB" run --local --methods \
+	'none,ssaa,fxaa:preset=10|12|15|20|23|25|29|39,subpix=0|0.25|0.5|0.75|1' --size 96x54 --out "$TMP/d"
+expect_stderr "methods\[2\]: fxaa: subpix lists 5 values, which makes the sweep 40 configurations; the job has room for [0-9]+ \(2 taken" \
 	"the refusal names the entry, the parameter and the count"
 [ ! -e "$TMP/d" ] && pass "nothing written for a refused sweep" || fail "a refused sweep wrote $TMP/d"
 finish

@@ -1,7 +1,7 @@
 /* Sweeps in a job's methods (docs/job-format.md, "Sweeps"): "fxaa:preset=10|20|39", "msaa:2|4|8" and the
  * object form's lists expand into one method per configuration, the cartesian product in the order
- * written (the last parameter fastest); the limit of 16 methods counts configurations and its error names
- * the entry and the parameter past it; bad sweeps are refused with the entry's path. */
+ * written (the last parameter fastest); the limit of a job's methods (AA_MAX_METHODS) counts configurations
+ * and its error names the entry and the parameter past it; bad sweeps are refused with the entry's path. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -109,32 +109,54 @@ static void test_same_job(void **state)
 	}
 }
 
-/* 16 methods in all, each configuration counted: 16 fit, 17 do not, and the error names the entry (the
- * object form: the parameter) and the parameter whose values pass the limit. */
+/* "fxaa:subpix=0|0.01|...": a sweep of count values, after the methods in before. */
+static const char *subpix_job(const char *before, int count, const char *after)
+{
+	static char job[4096];
+	snprintf(job, sizeof job, "{\"methods\": [%s\"fxaa:subpix=", before);
+	for (int k = 0; k < count; k++)
+		snprintf(job + strlen(job), sizeof job - strlen(job), "%s%g", k ? "|" : "", k / 1000.0);
+	snprintf(job + strlen(job), sizeof job - strlen(job), "\"%s]}", after);
+	return job;
+}
+
+/* AA_MAX_METHODS in all, each configuration counted: as many fit, one more does not, and the error names
+ * the entry (the object form: the parameter) and the parameter whose values pass the limit. */
 static void test_limit(void **state)
 {
 	(void)state;
-	/* fxaa has 17 presets: 15 of them and none make 16 */
-	expect_labels("{\"methods\": [\"none\", \"fxaa:preset=10|11|12|13|14|15|20|21|22|23|24|25|26|27|28\"]}",
-		      "none fxaa:preset=10 fxaa:preset=11 fxaa fxaa:preset=13 fxaa:preset=14 fxaa:preset=15 "
-		      "fxaa:preset=20 fxaa:preset=21 fxaa:preset=22 fxaa:preset=23 fxaa:preset=24 fxaa:preset=25 "
-		      "fxaa:preset=26 fxaa:preset=27 fxaa:preset=28");
-	expect_error("{\"methods\": [\"none\", \"fxaa:preset=10|11|12|13|14|15|20|21|22|23|24|25|26|27|28|29\"]}",
-		     AA_ERR_LIMIT, "methods[1]", "fxaa: preset lists 16 values, which makes the sweep 16 "
-		     "configurations; the job has room for 15 (1 taken by the methods before it)");
-	expect_error("{\"methods\": [\"fxaa:preset=10|11|12|13|14|15|20|21|22|23|24|25|26|27|28|29|39\"]}",
-		     AA_ERR_LIMIT, "methods[0]", "preset lists 17 values, which makes the sweep 17 configurations; the "
-		     "job has room for 16: a job compares at most 16 methods");
+	const int max = AA_MAX_METHODS;
+	char want[512];
+	struct aa_job_spec s;
+	struct aa_error err;
+	assert_int_equal(parse_text(subpix_job("\"none\", ", max - 1, ""), &s, &err), 0);
+	assert_int_equal(s.method_count, max);
+	snprintf(want, sizeof want, "fxaa:subpix=%g", (max - 2) / 1000.0);
+	assert_string_equal(s.methods[max - 1].label, want);
+	snprintf(want, sizeof want, "fxaa: subpix lists %d values, which makes the sweep %d configurations; the job "
+		 "has room for %d (1 taken by the methods before it)", max, max, max - 1);
+	expect_error(subpix_job("\"none\", ", max, ""), AA_ERR_LIMIT, "methods[1]", want);
+	snprintf(want, sizeof want, "subpix lists %d values, which makes the sweep %d configurations; the job has "
+		 "room for %d: a job compares at most %d methods", max + 1, max + 1, max, max);
+	expect_error(subpix_job("", max + 1, ""), AA_ERR_LIMIT, "methods[0]", want);
 	/* the product passes the limit at the second parameter: that one is named */
-	expect_error("{\"methods\": [\"none\", \"ssaa\", \"fxaa:preset=10|12|15|20|23|25|29|39,subpix=0|0.5\"]}",
-		     AA_ERR_LIMIT, "methods[2]", "subpix lists 2 values, which makes the sweep 16 configurations; the "
-		     "job has room for 14 (2 taken");
-	expect_error("{\"methods\": [{\"name\": \"fxaa\", \"params\": {\"preset\": [10, 12, 15, 20, 23, 25, 29, 39], "
-		     "\"subpix\": [0, 0.25, 0.5]}}]}",
-		     AA_ERR_LIMIT, "methods[0].params.subpix", "subpix lists 3 values, which makes the sweep 24");
+	snprintf(want, sizeof want, "subpix lists %d values, which makes the sweep %d configurations; the job has "
+		 "room for %d (2 taken", max / 2, 2 * (max / 2), max - 2);
+	char job[512];
+	snprintf(job, sizeof job, "{\"methods\": [\"none\", \"ssaa\", \"fxaa:preset=12|39,subpix=");
+	for (int k = 0; k < max / 2; k++)
+		snprintf(job + strlen(job), sizeof job - strlen(job), "%s%g", k ? "|" : "", k / 1000.0);
+	snprintf(job + strlen(job), sizeof job - strlen(job), "\"]}");
+	expect_error(job, AA_ERR_LIMIT, "methods[2]", want);
+	snprintf(job, sizeof job, "{\"methods\": [{\"name\": \"fxaa\", \"params\": {\"preset\": [10, 39], \"subpix\": [");
+	for (int k = 0; k < max / 2 + 1; k++)
+		snprintf(job + strlen(job), sizeof job - strlen(job), "%s%g", k ? ", " : "", k / 1000.0);
+	snprintf(job + strlen(job), sizeof job - strlen(job), "]}}]}");
+	snprintf(want, sizeof want, "subpix lists %d values, which makes the sweep %d", max / 2 + 1, 2 * (max / 2 + 1));
+	expect_error(job, AA_ERR_LIMIT, "methods[0].params.subpix", want);
 	/* a method that is no sweep after a sweep that filled the job */
-	expect_error("{\"methods\": [\"fxaa:preset=10|11|12|13|14|15|20|21|22|23|24|25|26|27|28|29\", \"none\"]}",
-		     AA_ERR_LIMIT, "methods[1]", "the job has 16 methods before this one");
+	snprintf(want, sizeof want, "the job has %d methods before this one", max);
+	expect_error(subpix_job("", max, ", \"none\""), AA_ERR_LIMIT, "methods[1]", want);
 }
 
 static void test_refused(void **state)
