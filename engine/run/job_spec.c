@@ -327,8 +327,8 @@ static int parse_methods(const json_t *v, const struct aa_file_source *files, st
 			return -1;
 		if (count + (int)json_array_size(configs) > AA_MAX_METHODS) { /* an item that is no sweep, past a sweep */
 			json_decref(configs);
-			return bad(err, AA_ERR_LIMIT, path, "the job has %d methods before this one, its sweeps counted by "
-				   "configuration; a job compares at most %d", count, AA_MAX_METHODS);
+			return bad(err, AA_ERR_LIMIT, path, "the job has %d method%s before this one, its sweeps counted by "
+				   "configuration; a job compares at most %d", count, count == 1 ? "" : "s", AA_MAX_METHODS);
 		}
 		const bool sweep = json_array_size(configs) > 1;
 		for (size_t c = 0; c < json_array_size(configs); c++) {

@@ -117,32 +117,30 @@ static json_t *expand_text(const json_t *item, const char *path, int room, struc
 			    "key=V1|V2", name, aa_shown_text(a->key, shown, sizeof shown));
 			return NULL;
 		}
+		/* the values are counted before they are kept: more than the job has room for is the limit's error,
+		 * and a kept list never outgrows values[] (room is at most AA_MAX_METHODS) */
+		const char *field = *a->key ? a->key : "the main parameter";
+		int total = 1;
+		for (const char *t = values; (t = strchr(t, '|')) != NULL; t++)
+			total++;
+		if (configurations * total > room) {
+			past_room(err, path, name, field, total, configurations * total, room);
+			return NULL;
+		}
 		a->count = 0;
 		for (char *v = values, *bar; v; v = bar) {
 			bar = strchr(v, '|');
 			if (bar)
 				*bar++ = '\0';
 			v = trim(v);
-			const char *field = *a->key ? a->key : "the main parameter";
-			if (!*v && (bar || a->count > 0)) {
+			if (!*v && total > 1) {
 				bad(err, AA_ERR_INVALID, path, "%s: %s: an empty value in a sweep; write V1|V2 with a value "
 				    "on each side of every '|'", name, field);
 				return NULL;
 			}
-			if (a->count == room || a->count == AA_MAX_METHODS) { /* counted past the limit: say by how much */
-				int total = a->count + 1;
-				for (const char *t = bar; t; t = strchr(t, '|') ? strchr(t, '|') + 1 : NULL)
-					total++;
-				past_room(err, path, name, field, total, configurations * total, room);
-				return NULL;
-			}
 			a->values[a->count++] = v;
 		}
-		configurations *= a->count;
-		if (configurations > room) {
-			past_room(err, path, name, *a->key ? a->key : "the main parameter", a->count, configurations, room);
-			return NULL;
-		}
+		configurations *= total;
 	}
 	/* configuration c: axis k's value is digit k of c in the mixed radix of the counts, the last fastest */
 	json_t *list = json_array();
