@@ -27,7 +27,8 @@ const char aa_run_help[] =
 	"compares them. Flags override the fields of JOB.json (docs/job-format.md). A job file may be a suite,\n"
 	"a matrix of scenes, paths and sizes; a suite is also found by name ('aalab suites' lists them).\n"
 	"Prints the verdict first (the methods on the cost-quality front, ties, what beats each other method\n"
-	"and by how much), then the table, then the warnings, each with what to do.\n"
+	"and by how much, and the front of each method family a sweep measured), then the table, then the\n"
+	"warnings, each with what to do.\n"
 	"\n"
 	AA_JOB_OPTIONS_HELP
 	"  --out DIR               where results go (default results/SCENE-YYYYMMDD-HHMMSS); written to a\n"

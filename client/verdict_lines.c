@@ -7,6 +7,24 @@
 #include "client.h"
 #include "util/json_text.h"
 
+/* One line per method family with several configurations (verdict.families): "  fxaa family front:
+ * fxaa:preset=20 and fxaa:preset=39 (of 3 configurations, cheapest first)". */
+static void print_families(json_t *verdict, FILE *out)
+{
+	json_t *f, *label;
+	size_t i, j;
+	json_array_foreach(json_object_get(verdict, "families"), i, f) {
+		json_t *front = json_object_get(f, "front");
+		const size_t n = json_array_size(front), of = json_array_size(json_object_get(f, "methods"));
+		fprintf(out, "  %s family front: ", aa_json_string(f, "family"));
+		if (n == 0)
+			fprintf(out, "none, its costs are not ranked");
+		json_array_foreach(front, j, label)
+			fprintf(out, "%s%s", j == 0 ? "" : j + 1 == n ? " and " : ", ", json_string_value(label));
+		fprintf(out, " (of %zu configurations, cheapest first)\n", of);
+	}
+}
+
 void aa_print_verdict(json_t *results, FILE *out)
 {
 	json_t *cases = json_object_get(results, "cases"), *c, *v, *line;
@@ -17,13 +35,16 @@ void aa_print_verdict(json_t *results, FILE *out)
 		fprintf(out, "verdict: %s\n", aa_json_string(v, "headline"));
 		json_array_foreach(json_object_get(v, "lines"), i, line)
 			fprintf(out, "  %s\n", json_string_value(line));
+		print_families(v, out);
 		return;
 	}
-	/* a suite: a headline per case; the table's verdict column names what beats each method, and each
+	/* a suite: a headline per case and its family fronts; the table's verdict column names what beats each method, and each
 	 * case's report and results.json say by how much */
 	json_array_foreach(cases, i, c)
-		if ((v = json_object_get(c, "verdict")))
+		if ((v = json_object_get(c, "verdict"))) {
 			fprintf(out, "verdict, %s: %s\n", aa_json_string(c, "id"), aa_json_string(v, "headline"));
+			print_families(v, out);
+		}
 }
 
 /* One warning: "  CODE: MESSAGE" and "    what to do: ACTION". */

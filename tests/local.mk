@@ -20,6 +20,8 @@ SCRIPT_TESTS += tests/reference_auto.sh tests/hard_cases.sh tests/hard_cases_lon
 SCRIPT_TESTS += tests/product_text.sh tests/docs_job_keys.sh
 # the store of reference frames from the command line (tests/reference_cache.sh)
 SCRIPT_TESTS += tests/reference_cache.sh
+# method sweeps end to end: the configurations run, each family's front in results.json and the terminal
+SCRIPT_TESTS += tests/sweep_run.sh
 TESTS += $(SCRIPT_TESTS)
 EXTRA_DIST += $(SCRIPT_TESTS) tests/lib.sh tests/lsan.supp tests/oracle/ssim_oracle.py tests/junit.xsd \
 	tests/assets tests/hardcases/small-suite.json tests/hardcases/long-static.json \

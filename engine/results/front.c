@@ -282,6 +282,75 @@ json_t *aa_front_json(const struct aa_front_entry *e, int n)
 	return v;
 }
 
+/* ------------------------------------------------------------------------------------------ families */
+
+/* The family of a label: the text before its ':' ("fxaa" of "fxaa:preset=20"), the method's name (a user
+ * method's own name). */
+static size_t family_length(const char *label)
+{
+	return strcspn(label, ":");
+}
+
+static bool same_family(const char *a, const char *b)
+{
+	const size_t n = family_length(a);
+	return n == family_length(b) && !strncmp(a, b, n);
+}
+
+/* Ascending median GPU cost; a missing median last; equal medians in job order. */
+static bool cheaper(const struct aa_front_entry *e, int a, int b)
+{
+	const double ma = e[a].cost.median, mb = e[b].cost.median;
+	if (isnan(ma) != isnan(mb))
+		return isnan(mb);
+	if (isnan(ma))
+		return a < b;
+	return ma < mb || (ma == mb && a < b);
+}
+
+json_t *aa_front_families_json(const struct aa_front_entry *e, int n)
+{
+	if (n < 0 || n > AA_FRONT_MAX)
+		return NULL;
+	json_t *families = json_array();
+	for (int first = 0; families && first < n; first++) {
+		/* each family once, at its first member in job order */
+		bool seen = false;
+		for (int j = 0; j < first && !seen; j++)
+			seen = same_family(e[j].label, e[first].label);
+		if (seen)
+			continue;
+		struct aa_front_entry member[AA_FRONT_MAX];
+		struct aa_front_place place[AA_FRONT_MAX];
+		int order[AA_FRONT_MAX], count = 0;
+		for (int j = first; j < n; j++)
+			if (same_family(e[j].label, e[first].label))
+				member[count++] = e[j];
+		if (count < 2)
+			continue;
+		aa_front_compute(member, count, place);
+		for (int k = 0; k < count; k++) { /* insertion sort by cost: a family is a handful */
+			int at = k;
+			while (at > 0 && cheaper(member, k, order[at - 1])) {
+				order[at] = order[at - 1];
+				at--;
+			}
+			order[at] = k;
+		}
+		json_t *methods = json_array(), *front = json_array();
+		for (int k = 0; k < count; k++) {
+			json_array_append_new(methods, json_string(member[order[k]].label));
+			if (place[order[k]].kind == AA_PLACE_FRONT)
+				json_array_append_new(front, json_string(member[order[k]].label));
+		}
+		char name[AA_LABEL_MAX];
+		snprintf(name, sizeof name, "%.*s", (int)family_length(e[first].label), e[first].label);
+		json_array_append_new(families, json_pack("{s:s, s:o, s:o}", "family", name, "methods", methods,
+							  "front", front));
+	}
+	return families;
+}
+
 json_t *aa_verdict_json(const struct aa_job_result *r)
 {
 	struct aa_front_entry e[AA_MAX_METHODS];
@@ -292,5 +361,12 @@ json_t *aa_verdict_json(const struct aa_job_result *r)
 		e[n++] = (struct aa_front_entry){.label = r->methods[i].label, .cost = s.gpu_ms,
 						 .psnr = s.psnr_identical ? INFINITY : s.psnr_mean, .flip = s.flip_mean};
 	}
-	return aa_front_json(e, n);
+	json_t *v = aa_front_json(e, n), *families = v ? aa_front_families_json(e, n) : NULL;
+	if (v && !families) {
+		json_decref(v);
+		return NULL;
+	}
+	if (v)
+		json_object_set_new(v, "families", families);
+	return v;
 }

@@ -49,7 +49,14 @@ int aa_front_compute(const struct aa_front_entry *e, int n, struct aa_front_plac
  * they are. At most AA_FRONT_MAX entries; NULL when out of memory or over. */
 json_t *aa_front_json(const struct aa_front_entry *e, int n);
 
-/* The verdict of one job (or case of a suite): the front over its methods. */
+/* The front of each method family with at least 2 configurations among the entries, as the verdict's
+ * "families" array (docs/results-format.md): one object per family, in the order of its first member,
+ * {"family": "fxaa", "methods": [its labels, ascending median GPU cost], "front": [those of them nothing
+ * of the family beats, by the rules of aa_front_compute, in the same order]}. A family is a label's text
+ * before ':'. NULL when out of memory or over AA_FRONT_MAX entries. */
+json_t *aa_front_families_json(const struct aa_front_entry *e, int n);
+
+/* The verdict of one job (or case of a suite): the front over its methods, with "families". */
 json_t *aa_verdict_json(const struct aa_job_result *r);
 
 #endif

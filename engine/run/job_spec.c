@@ -11,6 +11,7 @@
 #include "methods/user_method.h"
 #include "methods/methods.h"
 #include "run/job_spec.h"
+#include "run/method_sweep.h"
 #include "util/json_text.h"
 #include "util/suggest.h"
 
@@ -273,6 +274,35 @@ static int parse_method_object(const json_t *obj, const char *path, const struct
 	return 0;
 }
 
+/* One method of the job from one configuration of methods[i] (path): its slot ms, and its label. */
+static int parse_method_item(const json_t *item, const char *path, const struct aa_file_source *files,
+			     struct aa_method_spec *ms, struct aa_error *err)
+{
+	char label[AA_METHOD_TEXT_MAX];
+	ms->method = NULL; /* each slot holds a reference once parsed; see release_methods */
+	if (json_is_string(item) && is_user_text(json_string_value(item))) {
+		const char *colon = strchr(json_string_value(item), ':');
+		if (aa_user_method_parse(colon ? colon + 1 : "", files, path, &ms->method, &ms->params, err) < 0)
+			return -1;
+	} else if (json_is_string(item)) {
+		if (aa_method_parse(json_string_value(item), path, &ms->method, &ms->params, err) < 0)
+			return -1;
+	} else if (json_is_object(item)) {
+		if (parse_method_object(item, path, files, ms, err) < 0)
+			return -1;
+	} else {
+		return bad(err, AA_ERR_INVALID, path,
+			   "expected a method string (\"ssaa:16\") or an object {\"name\": ..., \"params\": {...}}, "
+			   "got %s", aa_json_type_name(item));
+	}
+	aa_method_label(ms->method, &ms->params, label, sizeof label);
+	if (strlen(label) >= sizeof ms->label)
+		return bad(err, AA_ERR_LIMIT, path, "label \"%.60s...\" is longer than %zu bytes", label,
+			   sizeof ms->label - 1);
+	memcpy(ms->label, label, strlen(label) + 1);
+	return 0;
+}
+
 static int parse_methods(const json_t *v, const struct aa_file_source *files, struct aa_job_spec *s,
 			 struct aa_error *err)
 {
@@ -284,47 +314,52 @@ static int parse_methods(const json_t *v, const struct aa_file_source *files, st
 	if (n > AA_MAX_METHODS)
 		return bad(err, AA_ERR_LIMIT, "methods", "%zu methods; a job compares at most %d", n, AA_MAX_METHODS);
 
+	/* count: the methods so far, a sweep's configurations each one; item[k]: the job's methods[] item that
+	 * method k came from, for the errors */
+	int count = 0;
+	size_t item_of[AA_MAX_METHODS];
+	s->method_count = 0;
 	for (size_t i = 0; i < n; i++) {
-		const json_t *item = json_array_get(v, i);
-		struct aa_method_spec *ms = &s->methods[i];
-		char path[32], label[AA_METHOD_TEXT_MAX];
+		char path[32];
 		snprintf(path, sizeof path, "methods[%zu]", i);
-		ms->method = NULL; /* each slot holds a reference once parsed; see release_methods */
-		if (json_is_string(item) && is_user_text(json_string_value(item))) {
-			const char *colon = strchr(json_string_value(item), ':');
-			if (aa_user_method_parse(colon ? colon + 1 : "", files, path, &ms->method, &ms->params, err) < 0)
-				return -1;
-		} else if (json_is_string(item)) {
-			if (aa_method_parse(json_string_value(item), path, &ms->method, &ms->params, err) < 0)
-				return -1;
-		} else if (json_is_object(item)) {
-			if (parse_method_object(item, path, files, ms, err) < 0)
-				return -1;
-		} else {
-			return bad(err, AA_ERR_INVALID, path,
-				   "expected a method string (\"ssaa:16\") or an object {\"name\": ..., \"params\": {...}}, "
-				   "got %s", aa_json_type_name(item));
+		json_t *configs = aa_method_sweep_expand(json_array_get(v, i), path, AA_MAX_METHODS - count, err);
+		if (!configs)
+			return -1;
+		if (count + (int)json_array_size(configs) > AA_MAX_METHODS) { /* an item that is no sweep, past a sweep */
+			json_decref(configs);
+			return bad(err, AA_ERR_LIMIT, path, "the job has %d method%s before this one, its sweeps counted by "
+				   "configuration; a job compares at most %d", count, count == 1 ? "" : "s", AA_MAX_METHODS);
 		}
-		aa_method_label(ms->method, &ms->params, label, sizeof label);
-		if (strlen(label) >= sizeof ms->label)
-			return bad(err, AA_ERR_LIMIT, path, "label \"%.60s...\" is longer than %zu bytes", label,
-				   sizeof ms->label - 1);
-		memcpy(ms->label, label, strlen(label) + 1);
-		/* Equal labels mean equal parameters: the same work twice, and results that cannot be told apart. */
-		for (size_t j = 0; j < i; j++) {
-			if (strcmp(s->methods[j].label, ms->label) != 0)
-				continue;
-			const struct aa_user_method *a = aa_user_method_of(s->methods[j].method),
-						    *b = aa_user_method_of(ms->method);
-			if (a && b && strcmp(a->sha256, b->sha256) != 0)
-				return bad(err, AA_ERR_INVALID, path, "%s and methods[%zu] (%s) are different user methods "
-					   "with the same label %s: give each method file its own \"name\"", b->file, j,
-					   a->file, ms->label);
-			return bad(err, AA_ERR_INVALID, path,
-				   "same method and parameters as methods[%zu] (%s); list it once", j, ms->label);
+		const bool sweep = json_array_size(configs) > 1;
+		for (size_t c = 0; c < json_array_size(configs); c++) {
+			struct aa_method_spec *ms = &s->methods[count];
+			const int rc = parse_method_item(json_array_get(configs, c), path, files, ms, err);
+			s->method_count = ++count; /* the slot may hold a reference even on an error */
+			if (rc < 0) {
+				json_decref(configs);
+				return -1;
+			}
+			item_of[count - 1] = i;
+			/* Equal labels mean equal parameters: the same work twice, and results that cannot be told apart. */
+			for (int j = 0; j < count - 1; j++) {
+				if (strcmp(s->methods[j].label, ms->label) != 0)
+					continue;
+				json_decref(configs);
+				const struct aa_user_method *a = aa_user_method_of(s->methods[j].method),
+							    *b = aa_user_method_of(ms->method);
+				if (a && b && strcmp(a->sha256, b->sha256) != 0)
+					return bad(err, AA_ERR_INVALID, path, "%s and methods[%zu] (%s) are different user methods "
+						   "with the same label %s: give each method file its own \"name\"", b->file,
+						   item_of[j], a->file, ms->label);
+				if (item_of[j] == i)
+					return bad(err, AA_ERR_INVALID, path, "the sweep names %s twice (a value listed twice, "
+						   "or written two ways); list each value once", ms->label);
+				return bad(err, AA_ERR_INVALID, path, "same method and parameters as methods[%zu] (%s)%s; "
+					   "list it once", item_of[j], ms->label, sweep ? ", which this sweep also names" : "");
+			}
 		}
+		json_decref(configs);
 	}
-	s->method_count = (int)n;
 	return 0;
 }
 

@@ -14,6 +14,7 @@ UNIT_TESTS = \
 	tests/unit/test_shadow_plan \
 	tests/unit/test_frame_plan \
 	tests/unit/test_job_spec \
+	tests/unit/test_sweep \
 	tests/unit/test_param_ranges \
 	tests/unit/test_known_values \
 	tests/unit/test_smaa_textures \
@@ -38,6 +39,7 @@ UNIT_TESTS = \
 #  mesh_text_check, mesh_files: the strict OBJ/OFF/PLY/STL readers; every test asset, every broken file
 #  shadow_plan, frame_plan: cascade fit to the view, and every shipped scene's and method's frame plan
 #  job_spec, param_ranges: job files; every parameter of every method at its bounds and one past
+#  sweep: method sweeps (fxaa:preset=10|20|39) expanded, their limit and what they refuse
 #  known_values: Halton points, jitter sequences, standard sample positions, FXAA/SMAA presets
 #  smaa_textures, rsaa_table: SMAA's generated look-up textures; RSAA's offset table and SADP
 #  user_method: method files, parameters, the GLSL of a pass, SHA-256, compiling and the SPIR-V cache

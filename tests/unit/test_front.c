@@ -1,6 +1,7 @@
 /* The cost-quality front (engine/results/front.c) on hand-made entries whose answers are worked out by
  * hand: which are on the front, what beats each other entry and by how much, ties in cost exactly at the
- * spreads' edges, entries with too few timed renders left unranked, identical images, and the headline. */
+ * spreads' edges, entries with too few timed renders left unranked, identical images, the headline, and the
+ * front of each method family. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -173,6 +174,70 @@ static void test_not_ranked(void **state)
 	json_decref(v);
 }
 
+/* The labels of a JSON array, space-separated. */
+static const char *joined(const json_t *list)
+{
+	static char out[1024];
+	size_t i;
+	json_t *x;
+	out[0] = '\0';
+	json_array_foreach(list, i, x)
+		snprintf(out + strlen(out), sizeof out - strlen(out), "%s%s", i ? " " : "", json_string_value(x));
+	return out;
+}
+
+/* Per-family fronts: each family of two or more configurations (the label before ':'; fxaa-cs, first
+ * here, is not fxaa) in the order of its first method (msaa:4 comes before fxaa:preset=10), its labels by median cost, and its own front. fxaa:preset=20
+ * is beaten by smaa overall but by nothing of its family; fxaa:preset=39 is beaten by fxaa:preset=20 (cheaper,
+ * better in both); msaa:8 by msaa:4 (cheaper, better PSNR, FLIP 0.031 > 0.03); msaa:2 and msaa:2x tie in
+ * cost with equal quality, both on the front; the ssaa pair is not ranked: on no front. */
+static void test_families(void **state)
+{
+	(void)state;
+	struct aa_front_entry e[] = {
+		entry("none", 1.0, 1.1, 1.2, 5, 20, 0.1),          entry("fxaa-cs:preset=10", 2.5, 2.6, 2.7, 5, 25, 0.05),
+		entry("msaa:4", 6.0, 6.1, 6.3, 5, 30, 0.03),       entry("fxaa:preset=10", 2.0, 2.1, 2.2, 5, 25, 0.05),
+		entry("smaa", 2.4, 2.5, 2.6, 5, 28, 0.035),        entry("msaa:2", 5.0, 5.15, 5.2, 5, 27, 0.04),
+		entry("fxaa:preset=20", 3.0, 3.1, 3.2, 5, 26, 0.045), entry("msaa:8", 9.0, 9.2, 9.5, 5, 29, 0.031),
+		entry("ssaa:16", 20, 21, 22, 1, 40, 0.01),         entry("fxaa:preset=39", 4.0, 4.2, 4.4, 5, 25.5, 0.05),
+		entry("ssaa:4", 8, 8.5, 9, 1, 35, 0.02),           entry("msaa:2x", 5.05, 5.1, 5.3, 5, 27, 0.04),
+	};
+	const int n = (int)(sizeof e / sizeof e[0]);
+	json_t *f = aa_front_families_json(e, n);
+	assert_non_null(f);
+	assert_int_equal(json_array_size(f), 3);
+	json_t *msaa = json_array_get(f, 0), *fxaa = json_array_get(f, 1), *ssaa = json_array_get(f, 2);
+	assert_int_equal(json_object_size(fxaa), 3); /* the shape is exactly family, methods, front */
+	assert_string_equal(json_string_value(json_object_get(fxaa, "family")), "fxaa");
+	assert_string_equal(joined(json_object_get(fxaa, "methods")), "fxaa:preset=10 fxaa:preset=20 fxaa:preset=39");
+	assert_string_equal(joined(json_object_get(fxaa, "front")), "fxaa:preset=10 fxaa:preset=20");
+	assert_string_equal(json_string_value(json_object_get(msaa, "family")), "msaa");
+	assert_string_equal(joined(json_object_get(msaa, "methods")), "msaa:2x msaa:2 msaa:4 msaa:8");
+	assert_string_equal(joined(json_object_get(msaa, "front")), "msaa:2x msaa:2 msaa:4");
+	assert_string_equal(json_string_value(json_object_get(ssaa, "family")), "ssaa");
+	assert_string_equal(joined(json_object_get(ssaa, "methods")), "ssaa:4 ssaa:16");
+	assert_int_equal(json_array_size(json_object_get(ssaa, "front")), 0);
+	json_decref(f);
+
+	/* the overall front is another matter: fxaa:preset=20 is beaten there */
+	struct aa_front_place p[12];
+	aa_front_compute(e, n, p);
+	assert_int_equal(p[6].kind, AA_PLACE_DOMINATED);
+	assert_int_equal(p[6].beaten_by, 4);
+
+	/* no family with two configurations: an empty array */
+	f = aa_front_families_json(e, 3);
+	assert_int_equal(json_array_size(f), 0);
+	json_decref(f);
+	/* equal medians keep job order; a missing median goes last */
+	struct aa_front_entry g[] = {entry("taa:a", 1, 2, 3, 5, 30, 0.03), entry("taa:b", 1, 2, 3, 5, 31, 0.02),
+				     entry("taa:c", NAN, NAN, NAN, 0, 33, 0.01), entry("taa:d", 0.2, 0.5, 0.8, 5, 29, 0.03)};
+	f = aa_front_families_json(g, 4);
+	assert_string_equal(joined(json_object_get(json_array_get(f, 0), "methods")), "taa:d taa:a taa:b taa:c");
+	assert_string_equal(joined(json_object_get(json_array_get(f, 0), "front")), "taa:d taa:b");
+	json_decref(f);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -181,6 +246,7 @@ int main(void)
 		cmocka_unit_test(test_equal_and_identical),
 		cmocka_unit_test(test_chains),
 		cmocka_unit_test(test_not_ranked),
+		cmocka_unit_test(test_families),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

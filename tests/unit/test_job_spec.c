@@ -236,7 +236,7 @@ static const struct bad_case bad_cases[] = {
 	  "unknown key; valid keys: name, params" },
 	{ "{\"methods\": [{\"name\": \"ssaa\", \"params\": {\"samples\": 5}}]}", AA_ERR_INVALID,
 	  "methods[0].params.samples", "methods[0].params.samples: ssaa: samples=5 is not valid" },
-	{ "{\"methods\": [{\"name\": \"ssaa\", \"params\": {\"samples\": [4]}}]}", AA_ERR_INVALID,
+	{ "{\"methods\": [{\"name\": \"ssaa\", \"params\": {\"samples\": [[4]]}}]}", AA_ERR_INVALID,
 	  "methods[0].params.samples", "expected a number, string or boolean, got an array" },
 	{ "{\"methods\": [{\"name\": \"ssaa\", \"params\": [4]}]}", AA_ERR_INVALID, "methods[0].params",
 	  "expected an object of parameter values" },
