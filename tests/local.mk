@@ -58,3 +58,10 @@ EXTRA_DIST += tests/layout/layers.py
 # the store of reference frames the tests use (AM_TESTS_ENVIRONMENT's XDG_CACHE_HOME)
 clean-local:
 	rm -rf tests/xdg-cache
+
+# What `make distcheck` runs in CI (.ci/run, `make distcheck TESTS='$(DISTCHECK_TESTS)'`): the tarball's
+# tests that read what it ships (sources, docs, scenes, suites, web pages, golden values) and finish in
+# minutes; the whole suite runs once, under the sanitizers, in the same CI run.
+DISTCHECK_TESTS = $(UNIT_TESTS) tests/fuzz/replay.sh tests/layout/layers.py tests/product_text.sh \
+	tests/docs_job_keys.sh tests/cli_help.sh tests/cli_errors.sh tests/run_job.sh \
+	tests/integration/test_golden tests/integration/daemon_docs.py tests/integration/daemon_http.py
