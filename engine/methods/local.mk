@@ -53,6 +53,12 @@ glsl_files += shaders/smaa_encode.frag shaders/smaa_edges.frag shaders/smaa_queu
 EXTRA_DIST += shaders/smaa_queue.glsl
 shaders/smaa_queue.comp.h shaders/smaa_weights.comp.h: $(srcdir)/shaders/smaa_queue.glsl
 
+# cmaa2 (conservative morphological AA: edges, shapes, deferred blend)
+libaaengine_a_SOURCES += engine/methods/cmaa2.c
+glsl_files += shaders/cmaa2_edges.comp shaders/cmaa2_shapes.comp shaders/cmaa2_apply.comp
+EXTRA_DIST += shaders/cmaa2_common.glsl
+shaders/cmaa2_edges.comp.h shaders/cmaa2_shapes.comp.h: $(srcdir)/shaders/cmaa2_common.glsl
+
 # rsaa (seed 002: resampling from geometric subsamples with a trained offset table)
 libaaengine_a_SOURCES += engine/methods/rsaa.c engine/methods/rsaa_table.h engine/methods/rsaa_table.c
 rsaa_glsl = shaders/rsaa_prepass.comp shaders/rsaa_resolve.comp
