@@ -1,8 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // CMAA2 pass 1, edge detection: for each pixel the edges towards its right and bottom neighbours. The
-// contrast across an edge is the largest per-channel difference of the sRGB-encoded colours (CMAA2's
-// colour path); an edge is kept when it reaches the preset's threshold and, local contrast adaptation,
+// contrast across an edge is the Rec. 601 luma-weighted sum of the per-channel differences of the
+// sRGB-encoded colours (CMAA2's colour path); an edge is kept when it reaches the preset's threshold and, local contrast adaptation,
 // when no edge touching either of its two pixels has more than lca_factor times its contrast (a soft
 // step beside a hard silhouette forms no line of its own).
 #include "cmaa2_common.glsl"
@@ -23,10 +23,10 @@ vec3 encoded(ivec2 p)
 	return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 }
 
+// CMAA2's colour contrast: the per-channel differences weighted as Rec. 601 luma
 float contrast(vec3 a, vec3 b)
 {
-	vec3 d = abs(a - b);
-	return max(max(d.r, d.g), d.b);
+	return dot(abs(a - b), vec3(0.299, 0.587, 0.114));
 }
 
 void main()

@@ -69,7 +69,7 @@ static int cmaa2_create(struct aa_renderer *r, const struct aa_method_params *p,
 	s->edges_push = (struct edges_push){preset_threshold[preset], LCA_FACTOR};
 	s->shapes_push = (struct shapes_push){(int32_t)p->v[1], SIMPLE_BLUR};
 	snprintf(info->path_taken, sizeof info->path_taken,
-		 "CMAA2 %s: colour edges, threshold %.2f, lines up to %d px, deferred blend", cmaa2_presets[preset],
+		 "CMAA2 %s: colour edges (Rec. 601 weights), threshold %.2f, lines up to %d px, deferred blend", cmaa2_presets[preset],
 		 (double)s->edges_push.threshold, s->shapes_push.max_line);
 	int w = r->width, h = r->height;
 	VkDeviceSize slots = (VkDeviceSize)w * h * 16; /* uvec4 per pixel */
