@@ -2,9 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // CMAA2 pass 1, edge detection: for each pixel the edges towards its right and bottom neighbours. The
 // contrast across an edge is the Rec. 601 luma-weighted sum of the per-channel differences of the
-// sRGB-encoded colours (CMAA2's colour path); an edge is kept when it reaches the preset's threshold and, local contrast adaptation,
-// when no edge touching either of its two pixels has more than lca_factor times its contrast (a soft
-// step beside a hard silhouette forms no line of its own).
+// gamma-encoded colours (CMAA2's colour path); an edge is kept when it reaches the preset's threshold
+// and, local contrast adaptation, when no edge touching either of its two pixels has more than
+// lca_factor times its contrast (a soft step beside a hard silhouette forms no line of its own).
 #include "cmaa2_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,10 +17,11 @@ layout(push_constant) uniform Push {
 
 ivec2 last;
 
+// CMAA2's gamma for edge detection: the sRGB curve approximated by a square root (a pow per channel and
+// fetch would be most of this pass's cost)
 vec3 encoded(ivec2 p)
 {
-	vec3 c = clamp(texelFetch(scene, clamp(p, ivec2(0), last), 0).rgb, 0.0, 1.0);
-	return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+	return sqrt(clamp(texelFetch(scene, clamp(p, ivec2(0), last), 0).rgb, 0.0, 1.0));
 }
 
 // CMAA2's colour contrast: the per-channel differences weighted as Rec. 601 luma
