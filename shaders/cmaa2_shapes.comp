@@ -4,12 +4,11 @@
 // read. Two kinds of shape:
 //  - lines: a pixel that starts a run of bottom edges (or right edges, the same turned) walks along it up
 //    to max_line pixels, to the first pixel without the edge or with a crossing edge at its corner. The
-//    crossing edges at the two ends say which way the line steps: a Z shape (steps to opposite sides) is
-//    revectorised as one line from the middle of one step to the middle of the other, an end that steps
-//    alone (L and U shapes) as a line from its step to the run's centre, and a run that steps at neither
-//    end is left as it is (a straight edge: nothing to correct, the conservative choice). For each pixel
-//    on either side, the area between the edge and that line on its side is how much of the other side's
-//    colour it takes;
+//    crossing edges at the two ends say which way the line steps: only a Z shape (steps to opposite
+//    sides, a staircase) is revectorised, as one line from the middle of one step to the middle of the
+//    other; L and U shapes (corners, bumps: often texture or text detail) and straight runs are left as
+//    they are, the conservative choice CMAA2 makes. For each pixel on either side, the area between the
+//    edge and that line on its side is how much of the other side's colour it takes;
 //  - simple shapes: a pixel with edges on three or four sides (a lone pixel, the tip of a thin line) is
 //    blended towards the neighbours across those edges by simple_blur each.
 // Deferred blending: the line's starting pixel writes the blended colour of every pixel it changes into
@@ -68,8 +67,7 @@ vec2 split_area(float ha, float hb, float w)
 	return ha > 0.0 ? vec2(tri.x, -tri.y) : vec2(tri.y, -tri.x);
 }
 
-// The revectorised line of a run of n pixels whose ends step to sides sl and sr (+1, -1 or 0), as one or
-// two straight pieces: x in [x0, x1] going from h0 to h1.
+// The revectorised line of a run: x in [x0, x1] going from height h0 to h1.
 struct Piece { float x0, x1, h0, h1; };
 
 vec2 column_area(Piece piece, float a, float b)
@@ -114,19 +112,12 @@ void run_line(ivec2 p, ivec2 along, ivec2 across, uint run_bit, uint cross_bit)
 	if (n == push.max_line)
 		end = crossing(p + n * along, along, across, cross_bit);
 	float sl = step_side(start), sr = step_side(end);
-	if (sl == 0.0 && sr == 0.0)
-		return;
-	float len = float(n);
-	Piece first, second;
-	if (sl * sr < 0.0) { // Z: one line from step to step
-		first = Piece(0.0, len, 0.5 * sl, 0.5 * sr);
-		second = Piece(0.0, 0.0, 0.0, 0.0);
-	} else {             // L, U: from each stepping end to the centre
-		first = Piece(0.0, 0.5 * len, 0.5 * sl, 0.0);
-		second = Piece(0.5 * len, len, 0.0, 0.5 * sr);
-	}
+	if (sl * sr >= 0.0)
+		return; // not a Z shape
+	// one line from the middle of one step to the middle of the other
+	Piece line = Piece(0.0, float(n), 0.5 * sl, 0.5 * sr);
 	for (int i = 0; i < n; i++) {
-		vec2 area = column_area(first, float(i), float(i + 1)) + column_area(second, float(i), float(i + 1));
+		vec2 area = column_area(line, float(i), float(i + 1));
 		ivec2 own = p + i * along, other = own + across;
 		vec3 c_own = colour(own), c_other = colour(other);
 		if (area.x > MIN_BLEND) // the line crosses into the run's own pixel: it takes the other colour

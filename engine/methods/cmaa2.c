@@ -1,10 +1,10 @@
 /* `cmaa2`: conservative morphological anti-aliasing in the manner of Intel's CMAA2 (Strugar and Lake,
  * 2018), written from its published description: a post-process on the 1 spp scene colour that changes
  * only pixels on clear edges. Three compute passes: edge detection (colour contrast with a threshold per
- * quality preset and local contrast adaptation), shape handling (Z, L and U shaped steps of edge lines,
- * revectorised; pixels with edges on three or four sides blurred a little), and the deferred blend (each
- * pixel the mean of the blends the shapes wrote for it). Straight edges without a step are left alone,
- * which is what makes it conservative: text and fine detail keep their sharpness. */
+ * quality preset and local contrast adaptation), shape handling (Z-shaped steps of edge lines, a
+ * staircase, revectorised; pixels with edges on three or four sides blurred a little), and the deferred
+ * blend (each pixel the mean of the blends the shapes wrote for it). Straight edges, corners and bumps
+ * are left alone, which is what makes it conservative: text and fine detail keep their sharpness. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -17,7 +17,7 @@ static const char *const cmaa2_presets[] = {"low", "medium", "high", "ultra", NU
 
 static const struct aa_param_def cmaa2_params[] = {
 	{.name = "preset", .type = AA_PARAM_ENUM, .def = PRESET_HIGH, .min = 0, .max = 3, .choices = cmaa2_presets,
-	 .help = "quality preset: the edge threshold (0.15, 0.10, 0.07, 0.05 of the sRGB-encoded range)"},
+	 .help = "quality preset: the edge threshold (0.15, 0.10, 0.07, 0.05 of the gamma-encoded range)"},
 	{.name = "max_line", .type = AA_PARAM_INT, .def = 86, .min = 2, .max = 256,
 	 .help = "longest edge line followed, in pixels; longer lines are revectorised in pieces"},
 };
@@ -135,8 +135,8 @@ static void cmaa2_reset(struct aa_method_state *s) { (void)s; }
 
 const struct aa_method aa_method_cmaa2 = {
 	.name = "cmaa2",
-	.summary = "conservative morphological AA (CMAA2): colour edges, Z/L/U shapes revectorised, simple "
-		   "shapes blurred, deferred blend; clear edges only",
+	.summary = "conservative morphological AA (CMAA2): colour edges, Z shapes revectorised, simple shapes "
+		   "blurred, deferred blend; clear edges only",
 	.seed = "Intel CMAA2 (2018), from its published description",
 	.params = cmaa2_params,
 	.param_count = 2,
