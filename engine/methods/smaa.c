@@ -327,11 +327,13 @@ static int chain_create(struct aa_method_state *s, int index, int edge, bool enc
 	VkSpecializationMapEntry entry = {0, 0, sizeof(int32_t)};
 	VkSpecializationInfo edge_spec = {1, &entry, sizeof edge_mode, &edge_mode};
 	VkSpecializationInfo reproject_spec = {1, &entry, sizeof reproject_flag, &reproject_flag};
-	struct aa_gpu_image *velocity = reproject ? s->velocity : NULL;
+	/* without reprojection the shaders do not read velocity, but their layout declares it: any image will
+	 * do for that binding */
+	struct aa_gpu_image *velocity = reproject ? s->velocity : c->target.output;
 	if (encode) {
 		if (smaa_pass_create(s, &c->encode_pass, &(struct smaa_pass_desc){
 				.frag = "smaa_encode.frag", .colour = {&s->encoded, &c->output},
-				.sources = {c->target.output, velocity}, .source_count = reproject ? 2 : 1,
+				.sources = {c->target.output, velocity}, .source_count = 2,
 				.specialization = &reproject_spec}, err))
 			return -1;
 	} else if (aa_fullscreen_pass_create(r, &c->copy_pass, &(struct aa_fullscreen_desc){
@@ -345,7 +347,7 @@ static int chain_create(struct aa_method_state *s, int index, int edge, bool enc
 			.specialization = &edge_spec}, err) ||
 	       smaa_pass_create(s, &c->blend_pass, &(struct smaa_pass_desc){
 			.frag = "smaa_blend.frag", .colour = {&c->output}, .colour_load = true, .mask = 2,
-			.sources = {c->target.output, &s->weights, velocity}, .source_count = reproject ? 3 : 2,
+			.sources = {c->target.output, &s->weights, velocity}, .source_count = 3,
 			.specialization = &reproject_spec}, err);
 }
 
@@ -528,6 +530,9 @@ static int smaa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, stru
 	}
 	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "smaa-resolve");
 	int32_t history_valid = s->history_valid;
+	for (int i = 0; i < s->chain_count && s->temporal; i++)
+		if (s->chains[i].previous.layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) /* not yet written */
+			aa_gpu_image_barrier(ctx->cmd, &s->chains[i].previous, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 	aa_fullscreen_pass_record(s->r, ctx->cmd, &s->resolve_pass, &history_valid, sizeof history_valid);
 	if (s->temporal) {
 		/* this frame's samples are the next frame's history (the reference's previous SMAA output) */
