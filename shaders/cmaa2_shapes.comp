@@ -101,6 +101,9 @@ void run_line(ivec2 p, ivec2 along, ivec2 across, uint run_bit, uint cross_bit)
 	bool continues = (edge_bits(p - along) & run_bit) != 0u && !start.x && !start.y;
 	if (continues)
 		return; // not the first pixel of its run
+	float sl = step_side(start);
+	if (sl == 0.0)
+		return; // a Z shape steps at both ends: no need to walk a run that does not step here
 	int n = 1;
 	bvec2 end = bvec2(false);
 	for (; n < push.max_line; n++) {
@@ -111,7 +114,7 @@ void run_line(ivec2 p, ivec2 along, ivec2 across, uint run_bit, uint cross_bit)
 	}
 	if (n == push.max_line)
 		end = crossing(p + n * along, along, across, cross_bit);
-	float sl = step_side(start), sr = step_side(end);
+	float sr = step_side(end);
 	if (sl * sr >= 0.0)
 		return; // not a Z shape
 	// one line from the middle of one step to the middle of the other
