@@ -17,10 +17,16 @@ layout(push_constant) uniform Push {
 	int search_steps;      // SMAA_MAX_SEARCH_STEPS: 2 pixels per step
 	int diag_steps;        // SMAA_MAX_SEARCH_STEPS_DIAG: 1 pixel per step; 0 = no diagonal detection
 	float corner_keep;     // 1 - SMAA_CORNER_ROUNDING / 100; negative = no corner detection
+	int pad;
+	// subsample indices (notes/smaa.md §3.9): the area texture slot of each line kind for this sample's
+	// position in the pixel: x vertical lines, y horizontal lines, z "/" diagonals, w "\" diagonals;
+	// all 0 for SMAA 1x
+	ivec4 subsample;
 } push;
 
 const float AREA_BLOCK = 16.0;             // orthogonal block of the area texture, per crossing pattern
 const vec2 AREA_SIZE = vec2(160.0, 560.0);
+const float AREA_SLOT = 80.0;              // rows per subsample slot (7 orthogonal, 5 diagonal)
 const float SEARCH_RESCALE = 255.0 / 127.0; // stored 0, 127, 254 -> 0, 1, 2 pixels
 const float SEARCH_END_BIAS = 3.25;         // +0.25 start offset, +1 search bias, +2 for the last step
 
@@ -87,10 +93,10 @@ float search_down(vec2 t)
 // Coverage for integer distances d to both ends and the crossing edges read there: round(4 e) is
 // 0 (none), 1 (on the far side of the line), 3 (on this pixel's side) or 4 (both), which is the block
 // index; distances are stored as sqrt (16 texels reach 225 pixels), so this read is bilinear.
-vec2 area_ortho(vec2 d, float e1, float e2)
+vec2 area_ortho(vec2 d, float e1, float e2, int slot)
 {
-	vec2 texel = AREA_BLOCK * round(4.0 * vec2(e1, e2)) + sqrt(d);
-	return textureLod(area_tex, (texel + 0.5) / AREA_SIZE, 0.0).rg; // SMAA 1x: subsample slot 0
+	vec2 texel = AREA_BLOCK * round(4.0 * vec2(e1, e2)) + sqrt(d) + vec2(0.0, AREA_SLOT * float(slot));
+	return textureLod(area_tex, (texel + 0.5) / AREA_SIZE, 0.0).rg;
 }
 
 // Which end rounds a corner: the nearer one (both, halved, when equal).
@@ -111,7 +117,7 @@ vec2 horizontal_weights(ivec2 p, vec2 uv)
 	float y = uv.y - 0.25 * rcp.y;
 	float e1 = textureLod(edges_tex, vec2(xl, y), 0.0).r;
 	float e2 = textureLodOffset(edges_tex, vec2(xr, y), 0.0, ivec2(1, 0)).r;
-	vec2 w = area_ortho(d, e1, e2);
+	vec2 w = area_ortho(d, e1, e2, push.subsample.y);
 	if (push.corner_keep >= 0.0) {
 		// A crossing edge that goes on two pixels beyond the line marks a real corner: blend less.
 		vec2 r = corner_share(d);
@@ -133,7 +139,7 @@ vec2 vertical_weights(ivec2 p, vec2 uv)
 	float x = uv.x - 0.25 * rcp.x;
 	float e1 = textureLod(edges_tex, vec2(x, yt), 0.0).g;
 	float e2 = textureLodOffset(edges_tex, vec2(x, yb), 0.0, ivec2(0, 1)).g;
-	vec2 w = area_ortho(d, e1, e2);
+	vec2 w = area_ortho(d, e1, e2, push.subsample.x);
 	if (push.corner_keep >= 0.0) {
 		vec2 r = corner_share(d);
 		int top = p.y - int(d.x), bottom = p.y + int(d.y) + 1;
@@ -167,9 +173,9 @@ vec3 diagonal_walk(ivec2 p, ivec2 dir, bool backslash)
 }
 
 // Diagonal area: distances and crossing codes are integers, so this is a texel read.
-vec2 area_diag(float dl, float dr, float c1, float c2)
+vec2 area_diag(float dl, float dr, float c1, float c2, int slot)
 {
-	return texelFetch(area_tex, ivec2(80 + 20 * int(c1) + int(dl), 20 * int(c2) + int(dr)), 0).rg;
+	return texelFetch(area_tex, ivec2(80 + 20 * int(c1) + int(dl), 80 * slot + 20 * int(c2) + int(dr)), 0).rg;
 }
 
 vec2 diagonal_weights(ivec2 p, vec2 e)
@@ -188,7 +194,7 @@ vec2 diagonal_weights(ivec2 p, vec2 e)
 		float c2 = 2.0 * edge_at(pr + ivec2(1, 0)).g + edge_at(pr + ivec2(1, -1)).r;
 		c1 = l.y >= 0.9 ? 0.0 : c1; // an end not found has no known crossing
 		c2 = r.y >= 0.9 ? 0.0 : c2;
-		w += area_diag(l.x, r.x, c1, c2);
+		w += area_diag(l.x, r.x, c1, c2, push.subsample.z);
 	}
 	// "\": the down-right arm needs the right neighbour's left edge
 	l = diagonal_walk(p, ivec2(-1, -1), true);
@@ -203,7 +209,7 @@ vec2 diagonal_weights(ivec2 p, vec2 e)
 		float c2 = 2.0 * edge_at(pr + ivec2(1, 0)).g + edge_at(pr + ivec2(1, 0)).r;
 		c1 = l.y >= 0.9 ? 0.0 : c1;
 		c2 = r.y >= 0.9 ? 0.0 : c2;
-		w += area_diag(l.x, r.x, c1, c2).gr; // mirrored pattern: the sides swap
+		w += area_diag(l.x, r.x, c1, c2, push.subsample.w).gr; // mirrored pattern: the sides swap
 	}
 	return w;
 }

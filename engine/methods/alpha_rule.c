@@ -13,6 +13,8 @@ enum aa_alpha_rule aa_method_alpha_rule(const struct aa_method *m, const struct 
 	if (m->alpha_rule != AA_ALPHA_FROM_NEEDS)
 		return m->alpha_rule;
 	unsigned needs = m->needs_fn && p ? m->needs_fn(p) : m->needs;
+	if (needs & AA_NEED_MSAA) /* one test per pixel and frame at the shading point, as MSAA */
+		return AA_ALPHA_PER_PIXEL;
 	return needs & (AA_NEED_HISTORY | AA_NEED_SUPERSAMPLED) ? AA_ALPHA_PER_SAMPLE : AA_ALPHA_PER_PIXEL;
 }
 

@@ -45,13 +45,19 @@ EXTRA_DIST += shaders/fxaa_common.glsl shaders/fxaa_cs_queue.glsl
 $(patsubst shaders/%,shaders/%.h,$(fxaa_glsl)): $(srcdir)/shaders/fxaa_common.glsl \
 	$(srcdir)/shaders/fxaa_cs_queue.glsl
 
-# smaa (SMAA 1x with its generated look-up textures)
+# smaa (SMAA 1x, T2x, S2x, 4x with its generated look-up textures)
 libaaengine_a_SOURCES += engine/methods/smaa.h engine/methods/smaa.c engine/methods/smaa_textures.h \
 	engine/methods/smaa_textures.c
 glsl_files += shaders/smaa_encode.frag shaders/smaa_edges.frag shaders/smaa_queue.comp \
-	shaders/smaa_weights.comp shaders/smaa_blend.frag
+	shaders/smaa_weights.comp shaders/smaa_blend.frag shaders/smaa_resolve.frag
 EXTRA_DIST += shaders/smaa_queue.glsl
 shaders/smaa_queue.comp.h shaders/smaa_weights.comp.h: $(srcdir)/shaders/smaa_queue.glsl
+
+# cmaa2 (conservative morphological AA: edges, shapes, deferred blend)
+libaaengine_a_SOURCES += engine/methods/cmaa2.c
+glsl_files += shaders/cmaa2_edges.comp shaders/cmaa2_shapes.comp shaders/cmaa2_apply.comp
+EXTRA_DIST += shaders/cmaa2_common.glsl
+shaders/cmaa2_edges.comp.h shaders/cmaa2_shapes.comp.h: $(srcdir)/shaders/cmaa2_common.glsl
 
 # rsaa (seed 002: resampling from geometric subsamples with a trained offset table)
 libaaengine_a_SOURCES += engine/methods/rsaa.c engine/methods/rsaa_table.h engine/methods/rsaa_table.c

@@ -45,8 +45,8 @@ void aa_method_label(const struct aa_method *m, const struct aa_method_params *p
 struct json_t;
 struct json_t *aa_methods_describe(void);
 /* The alpha rule a method runs with: alpha to coverage when its `alpha_to_coverage` parameter is true,
- * else the stated rule, else per sample for methods with history or supersampling and per pixel for the
- * rest. aa_alpha_rule_name: "per-pixel", "per-sample", "alpha-to-coverage". */
+ * else the stated rule, else per pixel for methods on MSAA samples, per sample for methods with history or
+ * supersampling and per pixel for the rest. aa_alpha_rule_name: "per-pixel", "per-sample", "alpha-to-coverage". */
 enum aa_alpha_rule aa_method_alpha_rule(const struct aa_method *m, const struct aa_method_params *p);
 const char *aa_alpha_rule_name(enum aa_alpha_rule rule);
 /* Writes the value of parameter i as text ("16", "0.75", "high", "true"). */

@@ -13,6 +13,7 @@ extern const struct aa_method aa_method_floor;
 extern const struct aa_method aa_method_taa;
 extern const struct aa_method aa_method_taa_sobel;
 extern const struct aa_method aa_method_smaa;
+extern const struct aa_method aa_method_cmaa2;
 extern const struct aa_method aa_method_fxaa;
 extern const struct aa_method aa_method_fxaa_cs;
 extern const struct aa_method aa_method_asaa;
@@ -29,6 +30,7 @@ const struct aa_method *const aa_methods[] = {
 	&aa_method_copy,
 	&aa_method_floor,
 	&aa_method_smaa,
+	&aa_method_cmaa2,
 	&aa_method_fxaa,
 	&aa_method_fxaa_cs,
 	&aa_method_asaa,

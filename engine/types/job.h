@@ -16,7 +16,7 @@
 #define AA_MAX_METHODS 16
 #define AA_MAX_PASSES 16
 #define AA_MAX_INVALID_TARGETS 8 /* per frame, the intermediates with invalid texels that are named */
-#define AA_MAX_MEMORY_ITEMS 16
+#define AA_MAX_MEMORY_ITEMS 24
 #define AA_MAX_WARNINGS 32         /* as AA_SCENE_MAX_WARNINGS */
 #define AA_LABEL_MAX 128
 

@@ -7,6 +7,7 @@ GPU_TESTS = \
 	tests/integration/test_alpha_rule \
 	tests/integration/test_fxaa \
 	tests/integration/test_smaa \
+	tests/integration/test_cmaa2 \
 	tests/integration/test_rsaa \
 	tests/integration/test_temporal \
 	tests/integration/test_temporal_jitter \
@@ -22,7 +23,8 @@ GPU_TESTS = \
 #  engine, analytic_edges: jobs end to end; methods against exact coverage of analytic edges
 #  msaa, alpha_rule: MSAA's shading point on hardware and virtual samples; every method family's alpha rule
 #  fxaa: fxaa and fxaa-cs agree within 1/255, beat none, refuse bad parameters
-#  smaa, rsaa: SMAA's passes; rsaa 8 beats 4 beats none, every parameter mix runs, dense detail stays finite
+#  cmaa2: its passes; slanted edges closer to exact coverage, aligned edges untouched
+#  smaa, rsaa: SMAA's passes and modes (T2x, S2x, 4x against 1x and msaa:2); rsaa 8 beats 4 beats none, every parameter mix runs, dense detail stays finite
 #  temporal, temporal_jitter: TAA's history; quads at two depths move by the same sub-pixel jitter
 #  temporal_stability_asaa_t2msaa: no NaN/Inf in history, 2,000 still frames within 0.5 dB, cuts reset
 #  user_methods: a pass-through user method measured as copy, the contract's values, compile errors
@@ -43,6 +45,7 @@ tests_integration_test_msaa_SOURCES = tests/integration/test_msaa.c $(GPU_TEST_F
 tests_integration_test_alpha_rule_SOURCES = tests/integration/test_alpha_rule.c $(GPU_TEST_FIXTURE)
 tests_integration_test_fxaa_SOURCES = tests/integration/test_fxaa.c $(GPU_TEST_FIXTURE)
 tests_integration_test_smaa_SOURCES = tests/integration/test_smaa.c $(GPU_TEST_FIXTURE)
+tests_integration_test_cmaa2_SOURCES = tests/integration/test_cmaa2.c $(GPU_TEST_FIXTURE)
 tests_integration_test_rsaa_SOURCES = tests/integration/test_rsaa.c $(GPU_TEST_FIXTURE)
 tests_integration_test_temporal_SOURCES = tests/integration/test_temporal.c $(GPU_TEST_FIXTURE)
 tests_integration_test_temporal_jitter_SOURCES = tests/integration/test_temporal_jitter.c $(GPU_TEST_FIXTURE)

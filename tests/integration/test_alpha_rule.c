@@ -226,6 +226,8 @@ static void test_every_method_reports_its_rule(void **state)
 	(void)state;
 	static const char *const expect[][2] = {
 		{"none", "per-pixel"}, {"fxaa", "per-pixel"}, {"smaa", "per-pixel"}, {"gbaa", "per-pixel"},
+		{"smaa:mode=t2x", "per-sample"}, {"smaa:mode=s2x", "per-pixel"}, {"smaa:mode=4x", "per-pixel"},
+		{"cmaa2", "per-pixel"},
 		{"msaa", "per-pixel"}, {"msaa:8,alpha_to_coverage=true", "alpha-to-coverage"}, {"rsaa", "per-pixel"},
 		{"rsaa:8,alpha_to_coverage=true", "alpha-to-coverage"}, {"t2msaa", "per-pixel"},
 		{"ssaa", "per-sample"}, {"taa", "per-sample"}, {"asaa", "per-sample"},
