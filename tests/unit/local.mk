@@ -16,6 +16,7 @@ UNIT_TESTS = \
 	tests/unit/test_job_spec \
 	tests/unit/test_param_ranges \
 	tests/unit/test_known_values \
+	tests/unit/test_sample_independence \
 	tests/unit/test_smaa_textures \
 	tests/unit/test_rsaa_table \
 	tests/unit/test_user_method \
@@ -38,7 +39,9 @@ UNIT_TESTS = \
 #  mesh_text_check, mesh_files: the strict OBJ/OFF/PLY/STL readers; every test asset, every broken file
 #  shadow_plan, frame_plan: cascade fit to the view, and every shipped scene's and method's frame plan
 #  job_spec, param_ranges: job files; every parameter of every method at its bounds and one past
-#  known_values: Halton points, jitter sequences, standard sample positions, FXAA/SMAA presets
+#  known_values: Halton and Sobol' points, the reference's scrambled nets, jitter sequences, standard sample
+#    positions, FXAA/SMAA presets
+#  sample_independence: no method's sample positions coincide with the reference's
 #  smaa_textures, rsaa_table: SMAA's generated look-up textures; RSAA's offset table and SADP
 #  user_method: method files, parameters, the GLSL of a pass, SHA-256, compiling and the SPIR-V cache
 #  debug_targets_count: the non-finite count on hand-made half, float and depth texels
