@@ -1,5 +1,6 @@
-// TAA resolve that converges (preset=converge, the default of taa and taa-sobel; docs/methods.md).
-// Differences from seed 001's resolve (taa_resolve.glsl), each for a measured failure of it:
+// The compute TAA resolves of taa and taa-sobel (docs/methods.md): preset=production (PRODUCTION 1, the
+// default: a TAA as engines ship it) and preset=accumulate (PRODUCTION 0: the best case an accumulating
+// TAA reaches). What both change from seed 001's resolve (taa_resolve.glsl), each for a measured failure:
 // - the current frame is reconstructed at the pixel centre from the jittered 3x3 samples with a Gaussian
 //   fit of Blackman-Harris (Karis 2014, UE4; weights from the jitter, taa_impl.c), so it is not shifted
 //   by the jitter;
@@ -9,6 +10,13 @@
 //   bright ball's pixels the floor's colour (inverting the tonemap multiplies them by 1 + luma);
 // - history read under motion with a Catmull-Rom filter (Falcor, HDRP) or bilinearly; clip box from
 //   min/max (AABB, seed 001) or Salvi's variance;
+// - production: history is clipped every frame and blended with the current colour by an exponential
+//   moving average whose current-frame weight is 1/n over the first frames after a reset, n counting
+//   them, and current_weight from then on (UE4's r.TemporalAACurrentFrameWeight 0.04; Falcor's alpha
+//   0.1); it rises toward 0.2 as the speed nears 40 px/frame (UE4's TemporalAA.usf), so a fast object
+//   keeps more of itself; before that, anti-flicker (Karis 2014, Falcor): the weight is scaled by d / (d + range),
+//   d the luma distance of history to the nearer side of the clip box and range the box's luma extent.
+//   No special path for still pixels. The rest applies to accumulate only:
 // - a pixel that has been still for a whole jitter cycle is settled: its history is the mean of its own
 //   jittered samples (each an unbiased sample of the box filter the reference uses) in linear light,
 //   taken over whole cycles, so a still image converges instead of following the jitter; a cycle's mean
@@ -16,7 +24,11 @@
 //   not clipped: the 3x3 neighbourhood cannot tell a sub-pixel wire that this frame's samples miss from
 //   stale history. It starts over when its own sample differs from the one at the same jitter position a
 //   cycle earlier: on a still pixel of a deterministic renderer only a change of the scene does that.
-// Included by taa_converge.comp (MASTER_TAA 0) and taa_master_converge.comp (MASTER_TAA 1, taa-sobel's box).
+// Included by taa_production.comp, taa_master_production.comp (PRODUCTION 1), taa_converge.comp and
+// taa_master_converge.comp (PRODUCTION 0); the master ones (MASTER_TAA 1) use taa-sobel's box.
+#ifndef PRODUCTION
+#define PRODUCTION 0
+#endif
 #include "taa_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -52,6 +64,7 @@ layout(push_constant) uniform Push {
 	int clip_linear;      // clip in linear YCoCg instead of tonemapped YCoCg
 	int tonemapped_resolve; // Karis' 1/(1 + luma) weight on every colour summed or blended
 	float filter_weights[9]; // reconstruction filter weight of each 3x3 sample this frame, row by row
+	float current_weight; // production: the current frame's weight once history holds 1/current_weight frames
 } pc;
 
 // A settled pixel's own sample differing from the one at the same position a cycle ago by more than
@@ -61,6 +74,16 @@ const uint CHANGE_STEPS = 4u;
 const float CHANGE = 0.02;
 // Below this many pixels of motion a pixel counts as still (rounding of equal matrices gives ~0).
 const float STILL_PIXELS = 0.01;
+// production: the current frame's weight rises toward MOTION_WEIGHT as the speed nears MOTION_PIXELS per
+// frame. UE4's TemporalAA.usf rises to 0.2 at 40 px; here to 1 (0.5 at 20 px/frame): with 0.2 a small
+// bright ball crossing at 15-20 px/frame kept under half its pixels (docs/methods.md).
+const float MOTION_WEIGHT = 1.0;
+const float MOTION_PIXELS = 40.0;
+// production: from this speed (pixels per frame) on, the 3x3 reconstruction is linear, below it blends
+// toward Karis' weights
+const float LINEAR_FILTER_PIXELS = 8.0;
+// production: the anti-flicker weight's floor (history of a thousand frames at most)
+const float MIN_WEIGHT = 1e-3;
 
 float luma709(vec3 c)
 {
@@ -143,7 +166,8 @@ float motion_sample_cap(float y_current, float y_history)
 
 // The 3x3 neighbourhood in the working space.
 struct Neighbourhood {
-	vec3 filtered;               // reconstruction at the pixel centre, linear
+	vec3 filtered;               // reconstruction at the pixel centre, linear (Karis-weighted or not)
+	vec3 filtered_linear;        // the same without Karis' weights
 	vec3 filtered_working;       // the same in the working space
 	vec3 box_min, box_max;       // the clip box (3x3 and cross combined, or variance)
 	vec3 min3, max3, minx, maxx; // taa-sobel mixes the 3x3 and cross boxes itself
@@ -158,7 +182,8 @@ Neighbourhood gather(ivec2 p)
 	Neighbourhood nb;
 	vec3 mn3 = vec3(1e30), mx3 = vec3(-1e30), mnx = vec3(1e30), mxx = vec3(-1e30);
 	vec3 sum3 = vec3(0.0), sq3 = vec3(0.0), sumx = vec3(0.0), sqx = vec3(0.0), filtered = vec3(0.0);
-	float n3 = 0.0, nx = 0.0, filter_weight = 0.0, closest = 1e30;
+	vec3 filtered_linear = vec3(0.0);
+	float n3 = 0.0, nx = 0.0, filter_weight = 0.0, linear_weight = 0.0, closest = 1e30;
 	nb.closest_at = p;
 	nb.dsum = 0.0;
 	nb.dmin = 1e30;
@@ -188,6 +213,8 @@ Neighbourhood gather(ivec2 p)
 			c = clamp(c, vec3(0.0), vec3(65504.0));
 			float w = pc.filter_weights[(y + 1) * 3 + (x + 1)] * resolve_weight(c);
 			filtered += w * c;
+			filtered_linear += pc.filter_weights[(y + 1) * 3 + (x + 1)] * c;
+			linear_weight += pc.filter_weights[(y + 1) * 3 + (x + 1)];
 			c = to_working(c);
 			filter_weight += w;
 			mn3 = min(mn3, c);
@@ -214,6 +241,7 @@ Neighbourhood gather(ivec2 p)
 		nx = n3;
 	}
 	nb.filtered = filtered / filter_weight;
+	nb.filtered_linear = filtered_linear / linear_weight;
 	nb.filtered_working = to_working(nb.filtered);
 	if (pc.clip_variance != 0) { // Salvi: mean +- gamma sigma
 		vec3 mean3 = sum3 / n3, sigma3 = sqrt(max(sq3 / n3 - mean3 * mean3, vec3(0.0)));
@@ -291,7 +319,9 @@ void main()
 	Neighbourhood nb = gather(p);
 	if (!nb.any_finite) { // every sample poisoned: write finite black rather than keep any of it
 		imageStore(history_out, p, vec4(0.0, 0.0, 0.0, 1.0));
+#if !PRODUCTION // production's cycle images are 1x1 and unused
 		imageStore(run_out, p, vec4(0.0));
+#endif
 		return;
 	}
 	vec3 own = texelFetch(current, p, 0).rgb;
@@ -304,17 +334,50 @@ void main()
 	bool still = all(lessThan(abs(v), vec2(STILL_PIXELS))); // NaN velocity: not still, not valid
 	ivec2 from = clamp(ivec2(floor(centre - v)), ivec2(0), last);
 	vec4 past = valid ? texelFetch(history, from, 0) : vec4(0.0);
+#if PRODUCTION
+	vec4 past_run = vec4(0.0);
+#else
 	vec4 past_run = valid ? texelFetch(run, from, 0) : vec4(0.0);
+#endif
 	vec3 h = past.rgb;
 	if (valid && !still)
 		h = pc.catmull_rom != 0 ? history_catmull_rom(centre - v) : textureLod(history, uv, 0.0).rgb;
 	valid = valid && finite3(h) && finite4(past) && past.a >= 1.0 && finite4(past_run);
 	h = clamp(h, vec3(0.0), vec3(65504.0));
+#if PRODUCTION
+	// Karis' weights in the 3x3 filter keep a jittered hit on an HDR speck from spreading over its
+	// neighbours, but they also let a few dark neighbours outweigh a small bright object's own sample:
+	// a bright ball moving fast, which history cannot hold either, faded to the floor. From
+	// LINEAR_FILTER_PIXELS of motion on, the filter is linear.
+	nb.filtered = mix(nb.filtered, nb.filtered_linear, clamp(length(v) / LINEAR_FILTER_PIXELS, 0.0, 1.0));
+	nb.filtered_working = to_working(nb.filtered);
+#endif
 #if MASTER_TAA
 	master_box(nb, p, depth, valid ? texelFetch(past_depth, from, 0).r : depth, valid);
 #endif
 	vec3 box_centre = 0.5 * (nb.box_min + nb.box_max);
 
+#if PRODUCTION
+	float n = past.a;
+	if (!valid) {
+		h = nb.filtered;
+		n = 1.0;
+	} else {
+		vec3 hw = to_working(h);
+		float weight = pc.current_weight;
+		// anti-flicker (Karis 2014, as Falcor): a history near the edge of the box gets less of the
+		// current frame, so a sample that only just widens the box does not pull history across it and back
+		float d = min(abs(nb.box_min.x - hw.x), abs(nb.box_max.x - hw.x));
+		float range = nb.box_max.x - nb.box_min.x;
+		weight = clamp(weight * d / max(d + range, 1e-7), MIN_WEIGHT, 1.0);
+		weight = mix(weight, max(weight, MOTION_WEIGHT), clamp(length(v) / MOTION_PIXELS, 0.0, 1.0));
+		vec3 w = clip_toward(hw, box_centre, nb.box_min, nb.box_max);
+		n = min(n + 1.0, 1.0 / weight);
+		h = resolve_mix(from_working(w), nb.filtered, 1.0 / n);
+	}
+	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
+	imageStore(history_out, p, vec4(h, n));
+#else
 	// A still pixel's run: how many frames it has been still, the mean of its own samples since the
 	// last whole cycle, and the lumas of its own samples by jitter position (valid once a whole cycle
 	// is in them).
@@ -361,4 +424,5 @@ void main()
 	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
 	imageStore(history_out, p, vec4(h, n));
 	imageStore(run_out, p, vec4(cycle_mean, run_length));
+#endif
 }

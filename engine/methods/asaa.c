@@ -171,21 +171,6 @@ static int asaa_create(struct aa_renderer *r, const struct aa_method_params *p, 
 	return 0;
 }
 
-/* The Gaussian offset g_t (seed 000 draws it with the Marsaglia polar method, Listing 4.2, and supposes
- * the original used a precalculated table): a table of 16 offsets, Box-Muller applied to Halton(2,3)
- * points, taken in turn by each buffer's updates. A stratified, repeating set lets a still pixel settle
- * on one well-spread estimate instead of wandering with fresh random offsets; it is deterministic, so a
- * run is reproducible and a run started at a cut matches one that reached it. */
-#define GAUSSIAN_TABLE 16
-static void gaussian_offset(int frame, float sigma, float out[2])
-{
-	unsigned i = (unsigned)((frame >> 2) & (GAUSSIAN_TABLE - 1)) + 1;
-	double u = aa_halton(i, 2), v = aa_halton(i, 3);
-	double radius = sigma * sqrt(-2.0 * log(u));
-	out[0] = (float)(radius * cos(2.0 * M_PI * v));
-	out[1] = (float)(radius * sin(2.0 * M_PI * v));
-}
-
 /* One ASAA step: render quadrant `index` of frame `frame`, update its buffer and the frame. */
 static void asaa_step(struct aa_method_state *s, struct aa_frame_ctx *ctx, int frame, bool still,
 		      const char *scene_span)
@@ -193,7 +178,7 @@ static void asaa_step(struct aa_method_state *s, struct aa_frame_ctx *ctx, int f
 	int index = frame & 3;
 	float phi[2], g[2];
 	aa_jitter_quadrant(index, phi);
-	gaussian_offset(frame, s->sigma, g);
+	aa_jitter_gaussian(frame, s->sigma, g);
 	int span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, scene_span);
 	/* pixel centre c then sees the scene at c + phi + g: buffer texel x holds the sample at x+0.5+phi */
 	aa_renderer_draw_scene(s->r, ctx->cmd, &s->scene, -(phi[0] + g[0]), -(phi[1] + g[1]));

@@ -12,5 +12,8 @@ void aa_jitter_quadrant(int frame, float out[2]);
 /* T2MSAA's alternation: +offset and -offset on the diagonal on even and odd frames (seed 000; offset
  * 0.25, 0.1875 or 0.125 pixels). */
 void aa_jitter_alternate(int frame, float offset, float out[2]);
+/* ASAA's Gaussian offset g_t of frame (seed 000): a table of 16 offsets, Box-Muller applied to Halton(2,3)
+ * points 1..16, each taken for four frames (one per quadrant buffer) in turn. */
+void aa_jitter_gaussian(int frame, float sigma, float out[2]);
 
 #endif

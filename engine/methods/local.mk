@@ -23,7 +23,8 @@ glsl_files += shaders/gbaa.geom shaders/gbaa.frag shaders/gbaa_resolve.frag shad
 libaaengine_a_SOURCES += engine/methods/taa_impl.h engine/methods/taa_impl.c engine/methods/taa.c
 glsl_files += shaders/taa_resolve.frag shaders/taa_master_resolve.frag shaders/taa_sharpen.frag \
 	shaders/taa_sobel_edges.frag shaders/taa_sobel_stabilise.frag \
-	shaders/taa_converge.comp shaders/taa_master_converge.comp
+	shaders/taa_converge.comp shaders/taa_master_converge.comp shaders/taa_production.comp \
+	shaders/taa_master_production.comp
 EXTRA_DIST += shaders/taa_common.glsl shaders/taa_resolve.glsl shaders/taa_converge.glsl \
 	shaders/resolve_weight.glsl
 $(glsl_headers): $(srcdir)/shaders/taa_common.glsl $(srcdir)/shaders/taa_resolve.glsl \

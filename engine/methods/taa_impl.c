@@ -1,5 +1,5 @@
-/* TAA machinery: jittered G-buffer scene pass, the resolve into float history (seed 001's, or the one
- * that converges), sharpening for display, and taa-sobel's edge image with its stabiliser. */
+/* TAA machinery: jittered G-buffer scene pass, the resolve into float history (production, accumulate or
+ * seed 001's), sharpening for display, and taa-sobel's edge image with its stabiliser. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,9 +13,9 @@ struct aa_method_state {
 	struct aa_taa_config config;
 	struct aa_scene_target scene;
 	struct aa_gpu_image history[2];     /* ping-pong: frame k reads [k&1], writes [(k+1)&1] */
-	struct aa_gpu_image run[2];         /* converge: still pixels' cycle under way and run length */
-	struct aa_gpu_image positions;      /* converge: own-sample luma per jitter position (in place) */
-	struct aa_gpu_image depth[2];       /* converge, taa-sobel: linear depth of the previous frame */
+	struct aa_gpu_image run[2];         /* accumulate: still pixels' cycle under way and run length */
+	struct aa_gpu_image positions;      /* accumulate: own-sample luma per jitter position (in place) */
+	struct aa_gpu_image depth[2];       /* compute resolves, taa-sobel: linear depth of the previous frame */
 	struct aa_gpu_image output;
 	struct aa_gpu_image edges, sobel[2]; /* master: raw and stabilised Sobel images */
 	struct aa_fullscreen_pass resolve[2], sharpen[2], edge_pass, stabilise[2];
@@ -39,11 +39,13 @@ struct taa_converge_push {
 	float feedback_min, feedback_max, gamma, max_samples;
 	int32_t cycle, jitter_index, history_valid, clip_variance, catmull_rom, clip_linear, tonemapped_resolve;
 	float filter_weights[9];
+	float current_weight;
 };
 
+/* production and accumulate: the compute resolve of shaders/taa_converge.glsl */
 static bool converging(const struct aa_method_state *s)
 {
-	return s->config.preset == AA_TAA_PRESET_CONVERGE;
+	return s->config.preset != AA_TAA_PRESET_SEED001;
 }
 
 void aa_taa_destroy(struct aa_method_state *s)
@@ -76,7 +78,10 @@ static int create_history(struct aa_method_state *s, struct aa_method_result *in
 {
 	struct aa_renderer *r = s->r;
 	if (converging(s)) {
-		/* float32: means over many frames must not stall on half-float steps */
+		/* float32: means over many frames must not stall on half-float steps. production keeps no
+		 * cycle: its shader declares the cycle images but never reads or writes them, so they are 1x1 */
+		bool production = s->config.preset == AA_TAA_PRESET_PRODUCTION;
+		int cw = production ? 1 : r->width, ch = production ? 1 : r->height;
 		static const char *const names[2][3] = {
 			{"history A (RGBA32F: colour, sample count)", "cycle A (RGBA32F: own-sample mean, frames still)",
 			 "depth A (R32F)"},
@@ -85,7 +90,7 @@ static int create_history(struct aa_method_state *s, struct aa_method_result *in
 		for (int i = 0; i < 2; i++) {
 			if (aa_renderer_image_create(r, &s->history[i], r->width, r->height,
 						     VK_FORMAT_R32G32B32A32_SFLOAT, storage_usage, names[i][0], info, err) ||
-			    aa_renderer_image_create(r, &s->run[i], r->width, r->height, VK_FORMAT_R32G32B32A32_SFLOAT,
+			    aa_renderer_image_create(r, &s->run[i], cw, ch, VK_FORMAT_R32G32B32A32_SFLOAT,
 						     storage_usage, names[i][1], info, err))
 				return -1;
 			if (s->config.master && aa_renderer_image_create(r, &s->depth[i], r->width, r->height,
@@ -94,7 +99,7 @@ static int create_history(struct aa_method_state *s, struct aa_method_result *in
 				return -1;
 		}
 		/* 16 lumas of 8 bits per pixel */
-		return aa_renderer_image_create(r, &s->positions, r->width, r->height, VK_FORMAT_R32G32B32A32_UINT,
+		return aa_renderer_image_create(r, &s->positions, cw, ch, VK_FORMAT_R32G32B32A32_UINT,
 						storage_usage, "own-sample luma per jitter position (RGBA32UI)", info,
 						err);
 	}
@@ -140,7 +145,9 @@ static int create_resolve(struct aa_method_state *s, int k, struct aa_error *err
 	struct aa_gpu_image *velocity = &s->scene.extra[0], *ids = &s->scene.extra[1], *surface = &s->scene.extra[4];
 	if (converging(s)) {
 		struct aa_compute_desc d = {
-			.comp = master ? "taa_master_converge.comp" : "taa_converge.comp",
+			.comp = s->config.preset == AA_TAA_PRESET_PRODUCTION ?
+				(master ? "taa_master_production.comp" : "taa_production.comp") :
+				(master ? "taa_master_converge.comp" : "taa_converge.comp"),
 			.binding_count = master ? 12 : 8,
 			.push_size = sizeof(struct taa_converge_push),
 			.bindings = {
@@ -227,14 +234,24 @@ static void describe(const struct aa_taa_config *c, struct aa_method_result *inf
 		return;
 	}
 	char clip[24] = "AABB";
-	if (c->clip == AA_TAA_CLIP_VARIANCE)
+	if (c->clip == AA_TAA_CLIP_VARIANCE) {
 		snprintf(clip, sizeof clip, "variance %.3g", (double)c->gamma);
-	snprintf(info->path_taken, sizeof info->path_taken,
-		 "preset converge: Halton x%d, filtered current, %s %s clip, %s, %s history, still "
-		 "pixels <= %d samples%s", c->jitter_length, box, clip,
+		box = c->master ? "Sobel/ID/depth" : "3x3";
+	}
+	char blend[64];
+	if (c->preset == AA_TAA_PRESET_PRODUCTION)
+		snprintf(blend, sizeof blend, "current weight %.3g, anti-flicker", (double)c->current_weight);
+	else
+		snprintf(blend, sizeof blend, "still pixels' exact mean <= %d samples", c->max_samples);
+	char text[256]; /* longer than path_taken can be: cut to it */
+	snprintf(text, sizeof text, "preset %s: Halton x%d, %s %s clip (%s), %s history, %s, %s",
+		 c->preset == AA_TAA_PRESET_PRODUCTION ? "production" : "accumulate", c->jitter_length, box, clip,
 		 c->clip_space == AA_TAA_CLIP_SPACE_LINEAR ? "linear" : "tonemapped",
-		 c->history_filter == AA_TAA_HISTORY_CATMULL_ROM ? "Catmull-Rom" : "bilinear", c->max_samples,
-		 c->tonemapped_resolve ? ", Karis-weighted resolve" : "");
+		 c->history_filter == AA_TAA_HISTORY_CATMULL_ROM ? "Catmull-Rom" : "bilinear", blend,
+		 c->tonemapped_resolve ? "Karis-weighted" : "linear blend");
+	size_t n = strnlen(text, sizeof info->path_taken - 1);
+	memcpy(info->path_taken, text, n);
+	info->path_taken[n] = '\0';
 }
 
 int aa_taa_create(struct aa_renderer *r, const struct aa_taa_config *config, struct aa_method_result *info,
@@ -296,7 +313,7 @@ static void record_resolve(struct aa_method_state *s, struct aa_frame_ctx *ctx, 
 		.history_valid = s->history_valid, .clip_variance = s->config.clip == AA_TAA_CLIP_VARIANCE,
 		.catmull_rom = s->config.history_filter == AA_TAA_HISTORY_CATMULL_ROM,
 		.clip_linear = s->config.clip_space == AA_TAA_CLIP_SPACE_LINEAR,
-		.tonemapped_resolve = s->config.tonemapped_resolve,
+		.tonemapped_resolve = s->config.tonemapped_resolve, .current_weight = s->config.current_weight,
 	};
 	reconstruction_weights(jitter, push.filter_weights);
 	aa_compute_pass_dispatch(ctx->cmd, &s->converge[k], &push, sizeof push, aa_compute_groups(r->width, 8),

@@ -3,15 +3,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "reference/owen_sobol.h"
 #include "reference/reference.h"
-#include "util/halton.h"
 
 void aa_reference_offsets(int n, float (*out)[2])
 {
-	/* Starting at 1 skips the (0,0) point, so every sample is a distinct point of the pixel square. */
+	/* Owen-scrambled Sobol' points from index 0 (scrambling moves it off the pixel's corner): a sequence
+	 * no method samples with (owen_sobol.h), nested, and stratified at every power of two. */
 	for (int i = 0; i < n; i++) {
-		out[i][0] = (float)(aa_halton((unsigned)i + 1, 2) - 0.5);
-		out[i][1] = (float)(aa_halton((unsigned)i + 1, 3) - 0.5);
+		float p[2];
+		aa_owen_sobol_2d((uint32_t)i, p);
+		out[i][0] = p[0] - 0.5f;
+		out[i][1] = p[1] - 0.5f;
 	}
 }
 

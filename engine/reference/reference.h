@@ -1,4 +1,5 @@
-/* The ground truth: N renders jittered over the pixel by a low-discrepancy pattern, accumulated in float
+/* The ground truth: N renders jittered over the pixel by a low-discrepancy pattern of its own (Owen-scrambled
+ * Sobol', owen_sobol.h: no method shares its positions), accumulated in float
  * (a box filter over the pixel). The N/2-sample image is kept to measure the reference's own error. */
 #ifndef AA_REFERENCE_H
 #define AA_REFERENCE_H
@@ -20,7 +21,8 @@ struct aa_reference {
 /* Each jittered render tests alpha at its own sample position. */
 #define AA_REFERENCE_ALPHA_RULE "per-sample"
 
-/* The reference's jitter: Halton(2,3) points 1..n mapped to [-0.5, 0.5)^2. */
+/* The reference's jitter: Owen-scrambled Sobol' points 0..n-1 mapped to [-0.5, 0.5)^2. */
+#define AA_REFERENCE_PATTERN "owen-sobol"
 void aa_reference_offsets(int n, float (*out)[2]);
 
 int aa_reference_create(struct aa_renderer *r, int samples, struct aa_reference *ref, struct aa_error *err);

@@ -1,5 +1,5 @@
 /* reference.samples "auto": a reference that measures its own error and stops when it is small enough.
- * The Halton points are nested, so doubling N adds N new renders to the running sum and the old N-sample
+ * The sample points are nested, so doubling N adds N new renders to the running sum and the old N-sample
  * image becomes the new N/2 one: reaching N costs N renders, as a fixed N does. With a store, each level
  * reached is stored with its running sum, so that a later run with a higher target goes on from it. */
 #include <stdlib.h>

@@ -153,7 +153,7 @@ static int setup(struct job_state *js, struct aa_error *err)
 	res->reference.samples = spec->reference_samples;
 	res->reference.auto_samples = spec->reference_auto;
 	res->reference.target_psnr = spec->reference_auto ? spec->reference_target_psnr : NAN;
-	snprintf(res->reference.pattern, sizeof res->reference.pattern, "halton-2-3");
+	snprintf(res->reference.pattern, sizeof res->reference.pattern, "%s", AA_REFERENCE_PATTERN);
 	/* a frame with injected NaN (tests) is not the reference its key names */
 	aa_reference_store_job(&js->store, spec->inject_nonfinite_frame < 0 ? js->engine->reference_cache : NULL,
 			       spec->reference_verify, spec->explain_key, &res->reference.cache, res->reference.pattern,

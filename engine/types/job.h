@@ -207,7 +207,7 @@ struct aa_reference_result {
 	int samples;               /* N, or with auto_samples the cap (reference.max_samples) */
 	bool auto_samples;         /* reference.samples "auto": each frame's N is in frames[].samples */
 	double target_psnr;        /* with auto_samples */
-	char pattern[32];          /* "halton-2-3" */
+	char pattern[32];          /* "owen-sobol" (AA_REFERENCE_PATTERN) */
 	uint64_t memory_bytes;
 	int frame_count;
 	struct aa_reference_frame *frames;

@@ -57,8 +57,8 @@ static double mean_flicker(const struct aa_method_result *m, int from, int to)
 static void test_still_128_frames(void **state)
 {
 	(void)state;
-	/* taa's converge preset reaches the reference here whatever its feedback; seed 001's resolve keeps
-	 * feedback_max's weight on history for good, so its numbers pin that default */
+	/* taa's production preset keeps current_weight on the current frame for good and seed 001's resolve
+	 * feedback_max's weight on history, so their numbers pin those defaults */
 	const char *methods[] = {"none", "taa", "taa-sobel", "asaa", "t2msaa", "taa:preset=seed001"};
 	const int frames = 128, late_from = 112, count = sizeof methods / sizeof methods[0];
 	struct aa_job_result *r = run("thin-wires", "static", methods, count, 64, 36, 0, frames, 16, NULL, NULL, NULL);
@@ -181,8 +181,8 @@ static void test_cut_is_a_fresh_start(void **state)
 static void test_feedback_order(void **state)
 {
 	(void)state;
-	const char *const refused[] = {"taa:feedback_min=0.95,feedback_max=0.9",
-				       "taa-sobel:feedback_min=0.5,feedback_max=0.4"};
+	const char *const refused[] = {"taa:preset=accumulate,feedback_min=0.95,feedback_max=0.9",
+				       "taa-sobel:preset=seed001,feedback_min=0.5,feedback_max=0.4"};
 	for (int k = 0; k < 2; k++) {
 		struct aa_job_spec spec;
 		fixture_spec(&spec, "thin-wires", &refused[k], 1, 16, 9, 1, 2);
@@ -194,7 +194,7 @@ static void test_feedback_order(void **state)
 		    !strstr(err.message, "must not exceed"))
 			fail_msg("%s: error %d at '%s': %s", refused[k], err.code, err.path, err.message);
 	}
-	const char *const equal[] = {"taa:feedback_min=0.9,feedback_max=0.9"};
+	const char *const equal[] = {"taa:preset=accumulate,feedback_min=0.9,feedback_max=0.9"};
 	struct aa_job_spec spec;
 	fixture_spec(&spec, "thin-wires", equal, 1, 16, 9, 1, 2);
 	fixture_free(fixture_run(&spec, NULL, NULL, NULL));

@@ -17,6 +17,7 @@ UNIT_TESTS = \
 	tests/unit/test_sweep \
 	tests/unit/test_param_ranges \
 	tests/unit/test_known_values \
+	tests/unit/test_sample_independence \
 	tests/unit/test_smaa_textures \
 	tests/unit/test_rsaa_table \
 	tests/unit/test_user_method \
@@ -40,7 +41,9 @@ UNIT_TESTS = \
 #  shadow_plan, frame_plan: cascade fit to the view, and every shipped scene's and method's frame plan
 #  job_spec, param_ranges: job files; every parameter of every method at its bounds and one past
 #  sweep: method sweeps (fxaa:preset=10|20|39) expanded, their limit and what they refuse
-#  known_values: Halton points, jitter sequences, standard sample positions, FXAA/SMAA presets
+#  known_values: Halton and Sobol' points, the reference's scrambled nets, jitter sequences, standard sample
+#    positions, FXAA/SMAA presets
+#  sample_independence: no method's sample positions coincide with the reference's
 #  smaa_textures, rsaa_table: SMAA's generated look-up textures; RSAA's offset table and SADP
 #  user_method: method files, parameters, the GLSL of a pass, SHA-256, compiling and the SPIR-V cache
 #  debug_targets_count: the non-finite count on hand-made half, float and depth texels

@@ -37,6 +37,7 @@ static const struct { const char *scene; bool shadow, cutout, animated; } scenes
 	{"far-from-origin-control", false, false, true},
 	{"depth-extremes", false, false, false},
 	{"hdr-fireflies", false, false, false},
+	{"fast-ball", false, false, true},
 };
 
 /* What each method asks for beyond the scene pass (engine/methods/, docs/methods.md). */

@@ -1,5 +1,5 @@
-/* Values with a known, exact answer, checked without a GPU: Halton points (worked out by hand), the jitter
- * sequences of the temporal methods, Vulkan's standard sample locations, FXAA 3.11's and SMAA 2.8's
+/* Values with a known, exact answer, checked without a GPU: Halton and Sobol' points (worked out by hand),
+ * the reference's scrambled nets, the jitter sequences of the temporal methods, Vulkan's standard sample locations, FXAA 3.11's and SMAA 2.8's
  * published presets and defaults, and the boolean reading of environment flags. */
 #include <math.h>
 #include <setjmp.h>
@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "run/engine.h"
@@ -14,7 +15,9 @@
 #include "methods/fxaa.h"
 #include "types/method.h"
 #include "methods/smaa.h"
+#include "reference/owen_sobol.h"
 #include "reference/reference.h"
+#include "types/job.h"
 #include "methods/jitter.h"
 #include "methods/methods.h"
 #include "util/halton.h"
@@ -38,40 +41,78 @@ static void test_halton_points(void **state)
 				 aa_halton(known[i].index, known[i].base), known[i].value);
 }
 
-/* The reference's offsets are Halton(2,3) points 1.. minus 0.5: never index 0, the pixel's corner. */
+/* The unscrambled Sobol' points worked out by hand: x is the van der Corput sequence (index's bits mirrored
+ * about the point); y xors the direction numbers 1/2, 3/4, 5/8, 15/16 of the index's set bits. */
+static void test_sobol_points(void **state)
+{
+	(void)state;
+	static const double expected[8][2] = {{0, 0}, {0.5, 0.5}, {0.25, 0.75}, {0.75, 0.25},
+					      {0.125, 0.625}, {0.625, 0.125}, {0.375, 0.375}, {0.875, 0.875}};
+	for (uint32_t i = 0; i < 8; i++) {
+		uint32_t p[2];
+		aa_sobol_2d(i, p);
+		for (int k = 0; k < 2; k++)
+			if (p[k] / 4294967296.0 != expected[i][k])
+				fail_msg("sobol %u.%c = %.9g, expected %.9g", i, "xy"[k], p[k] / 4294967296.0, expected[i][k]);
+	}
+	uint32_t p[2];
+	aa_sobol_2d(15, p); /* 1111: .1000 ^ .1100 ^ .1010 ^ .1111 = .0001 */
+	assert_true(p[1] == 0x10000000u && p[0] == 0xf0000000u);
+}
+
+/* Owen's scramble is nested: two fractions that agree in their first k bits still agree in them after it,
+ * and it permutes the 2^k intervals of each level (a bijection of the first k bits). */
+static void test_owen_scramble_nested(void **state)
+{
+	(void)state;
+	for (int k = 1; k <= 10; k++) {
+		static unsigned char seen[1 << 10];
+		memset(seen, 0, sizeof seen);
+		for (uint32_t top = 0; top < (1u << k); top++) {
+			uint32_t a = top << (32 - k), b = a | (0x9e3779b9u >> k); /* same first k bits */
+			uint32_t sa = aa_owen_scramble(a, 12345u), sb = aa_owen_scramble(b, 12345u);
+			if ((sa ^ sb) >> (32 - k))
+				fail_msg("level %d: 0x%08x and 0x%08x scramble to 0x%08x and 0x%08x", k, a, b, sa, sb);
+			seen[sa >> (32 - k)]++;
+		}
+		for (uint32_t t = 0; t < (1u << k); t++)
+			assert_int_equal(seen[t], 1);
+	}
+	/* it does scramble: not the identity, and other seeds give other trees */
+	assert_true(aa_owen_scramble(0x80000000u, 1u) != 0x80000000u || aa_owen_scramble(0x40000000u, 1u) != 0x40000000u);
+	assert_true(aa_owen_scramble(0x12345678u, 1u) != aa_owen_scramble(0x12345678u, 2u));
+}
+
+/* The reference's offsets: Owen-scrambled Sobol' points in [-0.5, 0.5)^2, nested, and at every power of two
+ * up to the largest reference a (0,k,2)-net: each of the 2^k boxes of every dyadic shape 2^-m x 2^-(k-m)
+ * holds exactly one of the first 2^k points. */
 static void test_reference_offsets(void **state)
 {
 	(void)state;
-	const float expected[8][2] = {
-		{0.0f, -1.0f / 6},         {-0.25f, 1.0f / 6},        {0.25f, -7.0f / 18},      {-0.375f, -1.0f / 18},
-		{0.125f, 5.0f / 18},       {-0.125f, -5.0f / 18},     {0.375f, 1.0f / 18},      {-0.4375f, 7.0f / 18},
-	};
-	float off[8][2];
-	aa_reference_offsets(8, off);
+	static float off[AA_MAX_REFERENCE_SAMPLES][2];
+	aa_reference_offsets(AA_MAX_REFERENCE_SAMPLES, off);
+	float few[8][2];
+	aa_reference_offsets(8, few);
 	for (int i = 0; i < 8; i++)
+		assert_true(few[i][0] == off[i][0] && few[i][1] == off[i][1]);
+	for (int i = 0; i < AA_MAX_REFERENCE_SAMPLES; i++)
 		for (int k = 0; k < 2; k++)
-			if (fabsf(off[i][k] - expected[i][k]) > 1e-7f)
-				fail_msg("reference offset %d.%c = %.9g, expected %.9g", i, "xy"[k], off[i][k],
-					 expected[i][k]);
-	/* a longer list starts with the same points */
-	float more[64][2];
-	aa_reference_offsets(64, more);
-	for (int i = 0; i < 8; i++)
-		assert_true(more[i][0] == off[i][0] && more[i][1] == off[i][1]);
-	/* 64 points = every x of the 64-point van der Corput set except 0, and 1/128 for it */
-	int seen[64] = {0};
-	for (int i = 0; i < 64; i++) {
-		double x = more[i][0] + 0.5;
-		if (i == 63) {
-			assert_true(fabs(x - 1.0 / 128) < 1e-7);
-			continue;
+			if (!(off[i][k] >= -0.5f && off[i][k] < 0.5f))
+				fail_msg("reference offset %d.%c = %.9g, outside the pixel", i, "xy"[k], off[i][k]);
+	static int count[AA_MAX_REFERENCE_SAMPLES];
+	for (int k = 0; (1 << k) <= AA_MAX_REFERENCE_SAMPLES; k++)
+		for (int m = 0; m <= k; m++) {
+			int n = 1 << k, cols = 1 << m, rows = 1 << (k - m);
+			memset(count, 0, sizeof count);
+			for (int i = 0; i < n; i++) {
+				int cx = (int)((off[i][0] + 0.5f) * (float)cols), cy = (int)((off[i][1] + 0.5f) * (float)rows);
+				count[cy * cols + cx]++;
+			}
+			for (int b = 0; b < n; b++)
+				if (count[b] != 1)
+					fail_msg("first %d reference points, %dx%d boxes: box %d holds %d", n, cols, rows, b,
+						 count[b]);
 		}
-		int k = (int)lround(x * 64);
-		assert_true(k >= 1 && k <= 63 && fabs(x * 64 - k) < 1e-5);
-		seen[k]++;
-	}
-	for (int k = 1; k < 64; k++)
-		assert_int_equal(seen[k], 1);
 }
 
 /* TAA's jitter: Halton points 1..length, repeating; ASAA's quadrant centres; T2MSAA's alternation. */
@@ -91,9 +132,6 @@ static void test_jitter_sequences(void **state)
 			aa_jitter_halton(f, len, a);
 			aa_jitter_halton(f % len, len, b);
 			assert_true(a[0] == b[0] && a[1] == b[1]);
-			float ref[16][2];
-			aa_reference_offsets(len, ref);
-			assert_true(a[0] == ref[f % len][0] && a[1] == ref[f % len][1]);
 		}
 
 	static const float quadrant[4][2] = {{-0.25f, -0.25f}, {0.25f, 0.25f}, {0.25f, -0.25f}, {-0.25f, 0.25f}};
@@ -265,6 +303,8 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_halton_points),
+		cmocka_unit_test(test_sobol_points),
+		cmocka_unit_test(test_owen_scramble_nested),
 		cmocka_unit_test(test_reference_offsets),
 		cmocka_unit_test(test_jitter_sequences),
 		cmocka_unit_test(test_standard_sample_positions),

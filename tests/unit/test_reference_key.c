@@ -32,7 +32,7 @@ static void base(struct aa_reference_key_inputs *in)
 	in->levels[0] = 32;
 	in->levels[1] = 64;
 	in->level_count = 2;
-	in->pattern = "halton-2-3";
+	in->pattern = "owen-sobol";
 	for (int i = 0; i < 64; i++) {
 		offsets[i][0] = (float)i / 64 - 0.5f;
 		offsets[i][1] = (float)((i * 7) % 64) / 64 - 0.5f;

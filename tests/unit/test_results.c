@@ -81,7 +81,7 @@ static struct aa_job_result *make_result(bool keep_frames)
 	snprintf(r->plan[1].reason, sizeof r->plan[1].reason, "no light casts shadows");
 
 	r->reference.samples = 64;
-	snprintf(r->reference.pattern, sizeof r->reference.pattern, "halton-2-3");
+	snprintf(r->reference.pattern, sizeof r->reference.pattern, "owen-sobol");
 	r->reference.memory_bytes = 3686400;
 	r->reference.frame_count = 3;
 	r->reference.frames = calloc(3, sizeof *r->reference.frames);
