@@ -165,35 +165,99 @@ static void legend(FILE *o, const struct aa_job_result *r)
 /* GPU ms (x) against mean PSNR (y): the cost of accuracy at a glance. */
 #define LABEL_CHAR 6.6    /* px per character, the chart's label font (an estimate: SVG text has no metrics) */
 
-/* Labels are ordered by height and each moves down a line at a time until it overlaps none above it:
- * methods of about the same cost and PSNR (fxaa and fxaa-cs, say) once printed their names over each
- * other. */
-void aa_report_spread_labels(struct aa_point_label *l, int n)
+static bool boxes_overlap(double ax0, double ay0, double ax1, double ay1, double bx0, double by0, double bx1, double by1)
 {
-	int order[AA_MAX_METHODS];
-	for (int i = 0; i < n; i++)
+	return ax0 < bx1 && bx0 < ax1 && ay0 < by1 && by0 < ay1;
+}
+
+/* Distance from (x, y) to the nearest point of a label's box (0 inside it). */
+static double box_distance(const struct aa_point_label *b, double x, double y)
+{
+	return hypot(fmax(fmax(b->x0 - x, 0), x - b->x1), fmax(fmax(b->y0 - y, 0), y - b->y1));
+}
+
+/* Whether label i may take box b: inside the plot, over no placed label and no point, and (strict) with
+ * no other point nearer to it than its own, since a label beside someone else's point reads as theirs. */
+static bool label_fits(const struct aa_point_label *b, int i, const double *px, const double *py, int n,
+		       const struct aa_point_label *placed, const bool *done, const double box[4], bool strict)
+{
+	if (b->x0 < box[0] || b->y0 < box[1] || b->x1 > box[2] || b->y1 > box[3])
+		return false;
+	for (int j = 0; j < n; j++) {
+		if (done[j] && boxes_overlap(b->x0, b->y0, b->x1, b->y1, placed[j].x0, placed[j].y0, placed[j].x1, placed[j].y1))
+			return false;
+		if (boxes_overlap(b->x0, b->y0, b->x1, b->y1, px[j] - AA_LABEL_DOT, py[j] - AA_LABEL_DOT, px[j] + AA_LABEL_DOT,
+				  py[j] + AA_LABEL_DOT))
+			return false;
+	}
+	if (!strict)
+		return true;
+	const double own = box_distance(b, px[i], py[i]);
+	for (int j = 0; j < n; j++)
+		if (j != i && (px[j] != px[i] || py[j] != py[i]) && box_distance(b, px[j], py[j]) < fmin(own, 16))
+			return false;
+	return true;
+}
+
+/* Places each point's label (l[i].x1 - l[i].x0 its width on entry) beside its point if there is room,
+ * else at the nearest free spot around it (rings of growing radius, eight directions each) with a
+ * leader line back to it; points with the most neighbours choose first. Never over another label or a
+ * point: methods of about the same cost and PSNR once printed their names over each other, and then
+ * far below every point. box is the plot: x0, y0, x1, y1. The dashboard's charts place theirs the same
+ * way (web/charts.js). */
+void aa_report_place_labels(struct aa_point_label *l, const double *px, const double *py, int n, const double box[4])
+{
+	static const int dirs[8][2] = { { 1, 0 }, { -1, 0 }, { 1, -1 }, { 1, 1 }, { -1, -1 }, { -1, 1 }, { 0, -1 }, { 0, 1 } };
+	int order[AA_MAX_METHODS], crowd[AA_MAX_METHODS];
+	bool done[AA_MAX_METHODS] = { false };
+	n = n > AA_MAX_METHODS ? AA_MAX_METHODS : n;
+	for (int i = 0; i < n; i++) {
 		order[i] = i;
-	for (int i = 1; i < n; i++) /* by height, then by input order: stable */
-		for (int j = i; j > 0 && l[order[j]].y < l[order[j - 1]].y; j--) {
-			int t = order[j];
-			order[j] = order[j - 1];
-			order[j - 1] = t;
+		crowd[i] = 0;
+		for (int j = 0; j < n; j++)
+			crowd[i] += hypot(px[j] - px[i], py[j] - py[i]) < 60;
+	}
+	for (int i = 1; i < n; i++) /* most crowded first, then left to right: stable */
+		for (int j = i; j > 0; j--) {
+			const int a = order[j], b = order[j - 1];
+			if (!(crowd[a] > crowd[b] || (crowd[a] == crowd[b] && px[a] < px[b])))
+				break;
+			order[j] = b;
+			order[j - 1] = a;
 		}
-	for (int k = 1; k < n; k++) {
-		struct aa_point_label *a = &l[order[k]];
-		for (bool moved = true; moved;) {
-			moved = false;
-			for (int m = 0; m < k; m++) {
-				const struct aa_point_label *b = &l[order[m]];
-				/* only ever down: where b->y + a line rounds to b->y (a chart whose PSNR range is
-				 * next to nothing puts labels near 1e18 px) the label stays, rather than loop */
-				const double below = b->y + AA_LABEL_LINE;
-				if (a->x0 < b->x1 && b->x0 < a->x1 && fabs(a->y - b->y) < AA_LABEL_LINE && below > a->y) {
-					a->y = below;
-					moved = true;
+	for (int k = 0; k < n; k++) {
+		const int i = order[k];
+		const double w = l[i].x1 - l[i].x0 + 4;
+		struct aa_point_label best = { 0 };
+		bool found = false;
+		for (int strict = 1; strict >= 0 && !found; strict--)
+			for (double r = 9; r <= 240 && !found; r += 10)
+				for (int d = 0; d < 8 && !found; d++) {
+					const double cx0 = px[i] + dirs[d][0] * r, cy0 = py[i] + dirs[d][1] * r * 0.8;
+					struct aa_point_label b = { 0 };
+					b.x0 = dirs[d][0] > 0 ? cx0 : dirs[d][0] < 0 ? cx0 - w : cx0 - w / 2;
+					b.y0 = dirs[d][1] > 0 ? cy0 : dirs[d][1] < 0 ? cy0 - AA_LABEL_HEIGHT : cy0 - AA_LABEL_HEIGHT / 2;
+					b.x1 = b.x0 + w;
+					b.y1 = b.y0 + AA_LABEL_HEIGHT;
+					if (label_fits(&b, i, px, py, n, l, done, box, strict)) {
+						best = b;
+						found = true;
+					}
 				}
-			}
+		if (!found) { /* nowhere free: beside the point, inside the plot, still joined by its line */
+			best.x0 = fmin(fmax(px[i] + 9, box[0]), box[2] - w);
+			best.y0 = py[i] - AA_LABEL_HEIGHT / 2;
+			best.x1 = best.x0 + w;
+			best.y1 = best.y0 + AA_LABEL_HEIGHT;
 		}
+		const double ex = fmin(fmax(px[i], best.x0), best.x1), ey = fmin(fmax(py[i], best.y0), best.y1);
+		best.lx = ex;
+		best.ly = ey;
+		best.leader = hypot(ex - px[i], ey - py[i]) > AA_LABEL_DOT + 4;
+		best.x = best.x0 + 2;
+		best.y = best.y1 - 4;
+		l[i] = best;
+		done[i] = true;
 	}
 }
 
@@ -232,21 +296,19 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 		    "GPU ms per frame (median, bar p10-p90)", "PSNR dB (mean; higher is better)");
 	struct aa_point_label labels[AA_MAX_METHODS];
 	int plotted[AA_MAX_METHODS], n = 0;
-	double px[AA_MAX_METHODS], py[AA_MAX_METHODS];
+	double px[AA_MAX_METHODS] = { 0 }, py[AA_MAX_METHODS] = { 0 };
 	for (int i = 0; i < r->method_count && n < AA_MAX_METHODS; i++) {
 		const double psnr = sum[i].psnr_identical ? INFINITY : sum[i].psnr_mean;
 		if (!isfinite(sum[i].gpu_ms_median) || !(psnr == INFINITY || isfinite(psnr)))
 			continue;
 		const double x = cx(&c, sum[i].gpu_ms_median), y = cy(&c, psnr);
-		const bool right = x > CW - MR - 170; /* keep labels inside the chart */
 		const double w = LABEL_CHAR * (double)strlen(r->methods[i].label);
-		const double lx = right ? x - 9 : x + 9;
-		labels[n] = (struct aa_point_label){.x = lx, .y = y - 7, .x0 = right ? lx - w : lx, .x1 = right ? lx : lx + w,
-						  .end = right};
+		labels[n] = (struct aa_point_label){ .x0 = 0, .x1 = w };
 		px[n] = x, py[n] = y;
 		plotted[n++] = i;
 	}
-	aa_report_spread_labels(labels, n);
+	const double plot[4] = { ML + 2, MT + 2, CW - MR - 2, CH - MB - 2 };
+	aa_report_place_labels(labels, px, py, n, plot);
 	for (int k = 0; k < n; k++) {
 		const int i = plotted[k];
 		const double x = px[k], y = py[k];
@@ -261,7 +323,7 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 		if (place && !strcmp(place, "front"))
 			fprintf(o, "<circle class=\"front\" cx=\"%.1f\" cy=\"%.1f\" r=\"9\" fill=\"none\" stroke=\"%s\" "
 				   "stroke-width=\"2\"/>\n", x, y, aa_report_color(i));
-		fprintf(o, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5.5\" fill=\"%s\"><title>", x, y, aa_report_color(i));
+		fprintf(o, "<circle class=\"method\" cx=\"%.1f\" cy=\"%.1f\" r=\"5.5\" fill=\"%s\"><title>", x, y, aa_report_color(i));
 		aa_report_esc(o, r->methods[i].label);
 		fprintf(o, ": %.2f ms (p10-p90 %.2f-%.2f, n %d), ", sum[i].gpu_ms_median, sum[i].gpu_ms.p10,
 			sum[i].gpu_ms.p90, sum[i].gpu_ms.n);
@@ -269,8 +331,12 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 			fputs("identical", o);
 		else
 			fprintf(o, "%.2f dB", sum[i].psnr_mean);
-		fprintf(o, "</title></circle><text class=\"point\" x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">",
-			labels[k].x, labels[k].y, labels[k].end ? "end" : "start");
+		fputs("</title></circle>", o);
+		/* a label away from its point is tied back to it by a line in the point's colour */
+		if (labels[k].leader)
+			fprintf(o, "<line class=\"leader\" stroke=\"%s\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/>", aa_report_color(i),
+				x, y, labels[k].lx, labels[k].ly);
+		fprintf(o, "<text class=\"point\" x=\"%.1f\" y=\"%.1f\">", labels[k].x, labels[k].y);
 		aa_report_esc(o, r->methods[i].label);
 		fputs("</text>\n", o);
 	}
@@ -372,4 +438,83 @@ void aa_report_chart_psnr_per_frame(FILE *o, const struct aa_job_result *r)
 	fputs("</svg>\n", o);
 	legend(o, r);
 	fputs("</figure>\n", o);
+}
+
+/* Each method's GPU time split by pass: one bar per method, its passes end to end (the median of each pass
+ * over every timed render, from the first frame's pass list), named in order after the bar; a hover gives
+ * p10-p90 and n. Colours go by a pass's place in its method, as pass names are mostly the method's own. */
+void aa_report_chart_passes(FILE *o, const struct aa_job_result *r)
+{
+	static const char *const pass_colour[] = { "#0072b2", "#e69f00", "#009e73", "#cc79a7", "#56b4e9", "#d55e00",
+						   "#8c564b", "#000000" };
+	double total[AA_MAX_METHODS] = { 0 }, xmax = 0;
+	int rows = 0;
+	for (int i = 0; i < r->method_count && i < AA_MAX_METHODS; i++) {
+		const struct aa_method_result *m = &r->methods[i];
+		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
+			struct aa_timing_stats ts;
+			aa_pass_timing_stats(m, m->frames[0].passes[k].name, &ts);
+			if (isfinite(ts.median))
+				total[i] += ts.median;
+		}
+		xmax = fmax(xmax, total[i]);
+		rows++;
+	}
+	if (xmax <= 0) {
+		fputs("<p class=\"note\">No per-pass GPU times.</p>\n", o);
+		return;
+	}
+	const double L = 150, R = 470, T = 8, row = 24, W = 1060, H = T + row * rows + 40;
+	double lo = 0, hi = xmax, step;
+	nice_range(&lo, &hi, &step);
+	fprintf(o, "<figure>\n<svg class=\"chart passes\" viewBox=\"0 0 %.0f %.0f\" role=\"img\" aria-label=\"GPU time of each "
+		   "method split by pass\" xmlns=\"http://www.w3.org/2000/svg\">\n", W, H);
+	for (int k = 0; k <= 40; k++) {
+		const double v = k * step, x = L + (R - L) * v / hi;
+		if (v > hi + step * 1e-6)
+			break;
+		fprintf(o, "<line class=\"grid\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\"/><text class=\"tick\" x=\"%.1f\" "
+			   "y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x, T, x, H - 34, x, H - 20, v);
+	}
+	fprintf(o, "<text class=\"axis\" x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">GPU ms per frame, median of each pass</text>\n",
+		(L + R) / 2, H - 4);
+	for (int i = 0; i < rows; i++) {
+		const struct aa_method_result *m = &r->methods[i];
+		const double y = T + row * i;
+		fprintf(o, "<text class=\"tick\" x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">", L - 6, y + 15);
+		aa_report_esc(o, m->label);
+		fputs("</text>\n", o);
+		double at = 0;
+		fprintf(o, "<text class=\"pass-names\" x=\"%.1f\" y=\"%.1f\">", R + 60, y + 15);
+		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
+			struct aa_timing_stats ts;
+			aa_pass_timing_stats(m, m->frames[0].passes[k].name, &ts);
+			const char *c = pass_colour[k % (int)(sizeof pass_colour / sizeof pass_colour[0])];
+			fprintf(o, "<tspan fill=\"%s\">\xe2\x96\xa0 </tspan><tspan>", c);
+			aa_report_esc(o, m->frames[0].passes[k].name);
+			fputc(' ', o);
+			aa_report_put_num(o, ts.median, 2);
+			fputs(k + 1 < m->frames[0].pass_count ? "\xc2\xa0\xc2\xa0 </tspan>" : "</tspan>", o);
+			at += isfinite(ts.median) ? ts.median : 0;
+		}
+		fputs("</text>\n", o);
+		at = 0;
+		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
+			struct aa_timing_stats ts;
+			aa_pass_timing_stats(m, m->frames[0].passes[k].name, &ts);
+			if (!isfinite(ts.median))
+				continue;
+			const char *c = pass_colour[k % (int)(sizeof pass_colour / sizeof pass_colour[0])];
+			fprintf(o, "<rect class=\"pass\" x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"%s\"><title>",
+				L + (R - L) * at / hi, y + 3, (R - L) * ts.median / hi, row - 7, c);
+			aa_report_esc(o, m->label);
+			fputs(" \xc2\xb7 ", o);
+			aa_report_esc(o, m->frames[0].passes[k].name);
+			fprintf(o, ": %.2f ms (p10-p90 %.2f-%.2f, n %d)</title></rect>\n", ts.median, ts.p10, ts.p90, ts.n);
+			at += ts.median;
+		}
+		fprintf(o, "<text class=\"tick\" x=\"%.1f\" y=\"%.1f\">%.2f</text>\n", L + (R - L) * at / hi + 4, y + 15, at);
+	}
+	fputs("</svg>\n<figcaption>Which pass costs what: each bar is a method's passes end to end, named in order on the right "
+	      "with their median GPU ms (hover a segment for its p10&ndash;p90 and n).</figcaption>\n</figure>\n", o);
 }

@@ -70,6 +70,41 @@ double aa_report_curve_mean(const struct aa_method_result *m, int t)
 	return n ? sum / n : NAN;
 }
 
+/* Every figure of the page in a sentence, linked from the top. */
+void aa_report_glossary(FILE *o)
+{
+	static const char *const terms[][2] = {
+		{ "Reference", "the image every method is measured against: the same frame rendered with N jittered samples "
+			       "per pixel and averaged (its own sample positions, never a method's)." },
+		{ "Convergence PSNR", "the PSNR of the reference's N/2-sample image against its N-sample image: how much "
+				      "noise is left in the reference. A method whose PSNR is near or above it is measured against "
+				      "that noise, not against the true image; under 40 dB, raise reference.samples." },
+		{ "PSNR", "peak signal-to-noise ratio of a method's frame against the reference, in dB: higher is closer; "
+			  "identical images have infinite PSNR, shown as \xe2\x80\x9cidentical\xe2\x80\x9d." },
+		{ "SSIM", "structural similarity against the reference, 1 for the same image." },
+		{ "FLIP", "NVIDIA's FLIP: the difference a viewer perceives when flipping between the method and the "
+			  "reference, per pixel from 0 (none) to 1; the mean over pixels and frames." },
+		{ "Flicker", "the mean absolute difference between a method's change from one frame to the next and the "
+			     "reference's change, in 8-bit levels: shimmer the reference does not have." },
+		{ "GPU ms", "GPU time of a frame (every pass of the method) from timestamp queries, over every timed render "
+			    "(frames x repeat): median, the 10th to 90th percentile (p10-p90) and the fastest (min)." },
+		{ "Front", "the methods no other method beats: none is both cheaper (p10-p90 spreads apart) and at least as "
+			   "good in PSNR and FLIP. A tie in cost means the spreads overlap." },
+		{ "Error-threshold curve", "the share of pixels whose luminance error exceeds each threshold: the tail "
+					   "where methods differ." },
+		{ "Worst regions", "the 16-pixel tiles with the most FLIP error summed over every method and frame." },
+	};
+	fputs("<h2 id=\"glossary\">Glossary</h2>\n<dl class=\"glossary\">\n", o);
+	for (size_t i = 0; i < sizeof terms / sizeof terms[0]; i++) {
+		fputs("<dt>", o);
+		aa_report_esc(o, terms[i][0]);
+		fputs("</dt><dd>", o);
+		aa_report_esc(o, terms[i][1]);
+		fputs("</dd>\n", o);
+	}
+	fputs("</dl>\n", o);
+}
+
 int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct aa_error *err)
 {
 	struct aa_method_summary sum[AA_MAX_METHODS];
@@ -106,10 +141,13 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	aa_report_write_verdict(o, verdict, warnings);
 	fputs("<div class=\"cards\">\n", o);
 	aa_report_summary_cards(o, &view);
-	fputs("</div>\n<h2 id=\"cost-chart\">GPU time against PSNR</h2>\n", o);
+	fputs("</div>\n<p class=\"note\">What every figure means: <a href=\"#glossary\">glossary</a> at the end of the "
+	      "page; hover a column head for its short form.</p>\n<h2 id=\"cost-chart\">GPU time against PSNR</h2>\n", o);
 	aa_report_chart_cost_accuracy(o, &view, sum, verdict);
 	fputs("<h2 id=\"cost\">Cost and accuracy</h2>\n", o);
 	aa_report_cost_table(o, &view, sum, verdict);
+	fputs("<h2 id=\"passes\">GPU time by pass</h2>\n", o);
+	aa_report_chart_passes(o, &view);
 	json_decref(verdict);
 	json_decref(warnings);
 	fputs("<h2 id=\"images\">Images</h2>\n", o);
@@ -127,8 +165,9 @@ int aa_report_write_html(const struct aa_job_result *r, const char *dir, struct 
 	fputs("<h2 id=\"plan\">Frame plan</h2>\n<p class=\"note\">Only the passes the scene and the methods need run; "
 	      "each row says why.</p>\n", o);
 	aa_report_plan_table(o, &view);
-	fputs("<h2 id=\"methods\">Methods</h2>\n", o);
+	fputs("<h2 id=\"memory\">Memory</h2>\n", o);
 	aa_report_method_sections(o, &view);
+	aa_report_glossary(o);
 	fputs("<footer>Every number on this page comes from results.json in the same directory. PSNR of identical "
 	      "images is infinite and shown as &ldquo;identical&rdquo;.</footer>\n</main></body>\n</html>\n", o);
 	if (fclose(o) != 0 || !buf) {

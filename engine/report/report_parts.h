@@ -19,11 +19,15 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 				   const json_t *verdict);
 void aa_report_chart_thresholds(FILE *o, const struct aa_job_result *r);
 void aa_report_chart_psnr_per_frame(FILE *o, const struct aa_job_result *r);
+/* Each method's GPU time as a bar stacked by pass. */
+void aa_report_chart_passes(FILE *o, const struct aa_job_result *r);
 
 void aa_report_summary_cards(FILE *o, const struct aa_job_result *r);
 void aa_report_cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum,
 			  const json_t *verdict);
 void aa_report_plan_table(FILE *o, const struct aa_job_result *r);
 void aa_report_method_sections(FILE *o, const struct aa_job_result *r);
+/* Every figure of the page explained (report_html.c). */
+void aa_report_glossary(FILE *o);
 
 #endif

@@ -41,4 +41,10 @@ const char aa_report_style[] =
 	".warnings h2{margin:8px 0 4px;border:0;font-size:17px}.warnings li{margin:4px 0}.warnings .todo{color:#78350f}"
 	".verdict{background:#ecfdf5;border:1px solid #10b981;border-radius:10px;padding:4px 16px;margin:0 0 16px}"
 	".verdict h2{margin:8px 0 4px;border:0;font-size:17px}.verdict .headline{font-size:17px;font-weight:600;margin:4px 0}"
-	".verdict li{margin:2px 0}.verdict .note{margin:6px 0}";
+	".verdict li{margin:2px 0}.verdict .note{margin:6px 0}"
+	/* the cost table fits 1280 px: numbers only in its columns, long texts in a detail row under each method */
+	"table.cost{font-size:13.5px}table.cost th,table.cost td{padding:6px 7px}"
+	"table.cost tr.detail td{font-size:12px;color:var(--mute);padding-top:0;border-bottom:1px solid var(--line)}"
+	"table.cost tr:not(.detail) td{border-bottom:0}table.cost tr.detail b{font-weight:600;color:#334155}"
+	"svg .leader{stroke-width:1;opacity:.8}svg.passes{max-width:100%}svg .pass-names{font-size:12px;fill:#0f172a}"
+	".glossary dt{font-weight:600;margin-top:8px}.glossary dd{margin:2px 0 0 18px;color:#334155}";

@@ -117,14 +117,17 @@ static void put_place(FILE *o, const json_t *verdict, int i)
 void aa_report_cost_table(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum,
 		       const json_t *verdict)
 {
-	fputs("<table>\n<tr><th>Method</th><th title=\"the verdict: on the cost-quality front, beaten by another "
-	      "method, or not ranked (too few timed renders)\">Verdict</th><th>Path taken</th>"
-	      "<th title=\"how cut-out (alpha-tested) materials were tested: per-pixel, per-sample or "
-	      "alpha-to-coverage\">Alpha test</th><th class=\"n\">GPU ms/frame<br>median</th>"
-	      "<th class=\"n\">GPU ms<br>p10&ndash;p90</th><th class=\"n\">GPU ms<br>min</th>"
+	/* every column a number or a word; the long texts (path taken, alpha test) go in a detail row under
+	 * each method, so that the table fits a 1280 px window */
+	fputs("<table class=\"cost\">\n<tr><th>Method</th><th title=\"the verdict: on the cost-quality front, beaten by another "
+	      "method, or not ranked (too few timed renders)\">Verdict</th>"
+	      "<th class=\"n\" title=\"median GPU time of a frame over every timed render\">GPU ms<br>median</th>"
+	      "<th class=\"n\" title=\"10th to 90th percentile of the GPU time over every timed render\">GPU ms<br>p10&ndash;p90</th>"
+	      "<th class=\"n\">GPU ms<br>min</th>"
 	      "<th class=\"n\" title=\"timed renders: frames x repeat\">n</th>"
 	      "<th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
-	      "<th class=\"n\">PSNR dB<br>mean</th><th class=\"n\">PSNR dB<br>worst frame</th><th class=\"n\">SSIM<br>mean</th>"
+	      "<th class=\"n\" title=\"peak signal-to-noise ratio against the reference; higher is closer\">PSNR dB<br>mean</th>"
+	      "<th class=\"n\">PSNR dB<br>worst</th><th class=\"n\" title=\"structural similarity, 1 = same\">SSIM<br>mean</th>"
 	      "<th class=\"n\" title=\"perceived difference when flipping between method and reference, 0 = none\">"
 	      "FLIP<br>mean</th>"
 	      "<th class=\"n\" title=\"mean |change between frames - the reference's change|, 8-bit levels\">"
@@ -140,11 +143,6 @@ void aa_report_cost_table(FILE *o, const struct aa_job_result *r, const struct a
 		aa_report_esc(o, r->methods[i].label);
 		fputs("</td><td>", o);
 		put_place(o, verdict, i);
-		fputs("</td><td>", o);
-		aa_report_esc(o, r->methods[i].path_taken);
-		fputs("</td><td>", o);
-		if (r->methods[i].method)
-			aa_report_esc(o, aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
 		fputs("</td><td class=\"n\">", o);
 		aa_report_put_num(o, s->gpu_ms_median, 2);
 		fputs("</td><td class=\"n\">", o);
@@ -171,6 +169,15 @@ void aa_report_cost_table(FILE *o, const struct aa_job_result *r, const struct a
 		aa_report_put_num(o, s->flip_mean, 4);
 		fputs("</td><td class=\"n\">", o);
 		aa_report_put_num(o, s->flicker_mean, 3);
+		fputs("</td></tr>\n<tr class=\"detail\"><td colspan=\"13\">", o);
+		if (*r->methods[i].path_taken) {
+			fputs("<b>path taken</b> ", o);
+			aa_report_esc(o, r->methods[i].path_taken);
+		}
+		if (r->methods[i].method) {
+			fputs(" \xc2\xb7 <b>alpha test</b> ", o);
+			aa_report_esc(o, aa_alpha_rule_name(aa_method_alpha_rule(r->methods[i].method, &r->methods[i].params)));
+		}
 		fputs("</td></tr>\n", o);
 	}
 	fputs("</table>\n", o);
@@ -193,36 +200,21 @@ void aa_report_plan_table(FILE *o, const struct aa_job_result *r)
 	fputs("</table>\n", o);
 }
 
+/* What each method allocates, item by item (the GPU time by pass is a chart: report_charts.c). */
 void aa_report_method_sections(FILE *o, const struct aa_job_result *r)
 {
+	fputs("<table class=\"memory\">\n<tr><th>Method</th><th>Memory by item</th></tr>\n", o);
 	for (int i = 0; i < r->method_count; i++) {
 		const struct aa_method_result *m = &r->methods[i];
-		fputs("<div class=\"method\"><h3>", o);
-		fprintf(o, "<span class=\"swatch\" style=\"background:%s\"></span>", aa_report_color(i));
+		fprintf(o, "<tr><td><span class=\"swatch\" style=\"background:%s\"></span>", aa_report_color(i));
 		aa_report_esc(o, m->label);
-		fputs("</h3>\n<p class=\"meta\">", o);
-		aa_report_esc(o, *m->path_taken ? m->path_taken : "path not reported");
-		/* GPU time of each of the method's passes over every timed render: median (p10-p90, n), from the
-		 * first frame's pass list */
-		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++) {
-			struct aa_timing_stats t;
-			aa_pass_timing_stats(m, m->frames[0].passes[k].name, &t);
-			fputs(k ? ", " : " \xc2\xb7 passes: ", o);
-			aa_report_esc(o, m->frames[0].passes[k].name);
-			fputc(' ', o);
-			aa_report_put_num(o, t.median, 2);
-			fputs(" ms (", o);
-			aa_report_put_num(o, t.p10, 2);
-			fputs("&ndash;", o);
-			aa_report_put_num(o, t.p90, 2);
-			fprintf(o, ", n %d)", t.n);
-		}
+		fputs("</td><td>", o);
 		for (int k = 0; k < m->memory_count && k < AA_MAX_MEMORY_ITEMS; k++) {
-			fputs(k ? ", " : " \xc2\xb7 memory: ", o);
+			fputs(k ? ", " : "", o);
 			aa_report_esc(o, m->memory[k].name);
 			fprintf(o, " %.2f MiB", (double)m->memory[k].bytes / 1048576.0);
 		}
-		fputs("</p>\n", o);
-		fputs("</div>\n", o); /* the images are in the viewer (report_viewer.c) */
+		fputs("</td></tr>\n", o);
 	}
+	fputs("</table>\n", o);
 }
