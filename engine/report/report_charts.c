@@ -231,7 +231,7 @@ void aa_report_place_labels(struct aa_point_label *l, const double *px, const do
 		struct aa_point_label best = { 0 };
 		bool found = false;
 		for (int strict = 1; strict >= 0 && !found; strict--)
-			for (double r = 9; r <= 240 && !found; r += 10)
+			for (double r = AA_LABEL_DOT + 1; r <= 240 && !found; r += 10)
 				for (int d = 0; d < 8 && !found; d++) {
 					const double cx0 = px[i] + dirs[d][0] * r, cy0 = py[i] + dirs[d][1] * r * 0.8;
 					struct aa_point_label b = { 0 };
@@ -245,7 +245,7 @@ void aa_report_place_labels(struct aa_point_label *l, const double *px, const do
 					}
 				}
 		if (!found) { /* nowhere free: beside the point, inside the plot, still joined by its line */
-			best.x0 = fmin(fmax(px[i] + 9, box[0]), box[2] - w);
+			best.x0 = fmin(fmax(px[i] + AA_LABEL_DOT + 1, box[0]), box[2] - w);
 			best.y0 = py[i] - AA_LABEL_HEIGHT / 2;
 			best.x1 = best.x0 + w;
 			best.y1 = best.y0 + AA_LABEL_HEIGHT;
