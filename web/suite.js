@@ -217,7 +217,7 @@ function passBars(c) {
   const methods = c.doc.methods.filter(m => (m.passes || []).length);
   if (!methods.length) return el("p", {class: "note"}, "No per-pass GPU times.");
   const PASS_COLOURS = ["#0072b2", "#e69f00", "#009e73", "#cc79a7", "#56b4e9", "#d55e00", "#8c564b", "#000000"];
-  const W = 1100, rowH = 22, L = 130, R = 560, T = 8;
+  const W = 1340, rowH = 22, L = 130, R = 480, T = 8;
   const H = T + rowH * methods.length + 40;
   const max = Math.max(...methods.map(m => m.passes.reduce((a, p) => a + (p.gpu_ms || 0), 0)));
   const x = scale(0, max, L, R, false);

@@ -464,7 +464,7 @@ void aa_report_chart_passes(FILE *o, const struct aa_job_result *r)
 		fputs("<p class=\"note\">No per-pass GPU times.</p>\n", o);
 		return;
 	}
-	const double L = 150, R = 470, T = 8, row = 24, W = 1060, H = T + row * rows + 40;
+	const double L = 150, R = 440, T = 8, row = 24, W = 1080, H = T + row * rows + 40;
 	double lo = 0, hi = xmax, step;
 	nice_range(&lo, &hi, &step);
 	fprintf(o, "<figure>\n<svg class=\"chart passes\" viewBox=\"0 0 %.0f %.0f\" role=\"img\" aria-label=\"GPU time of each "
