@@ -13,7 +13,8 @@ ssaa:4, which trips the memory gate against the second). Checks from the DOM at 
 - trends: every series has one legend entry, and within a chart no two entries look alike (colour, dash,
   marker); the gate markers on the memory trend are exactly the memory gates `aalab compare` trips for the
   third job against the second.
-Skipped (77) only when chromium is not installed. With --shots DIR it keeps screenshots of each view."""
+Skipped (77) only when chromium is not installed. With --shots DIR it keeps screenshots of each view
+(docs/img/dashboard-*.png are these: --shots docs/img)."""
 import json
 import math
 import os
@@ -106,7 +107,8 @@ def main():
         check(b.wait_for("document.querySelector('#case-view').dataset.case === %s" % json.dumps(second), 10),
               "a click on a cell opens its case")
         if shots:
-            shoot(b, "#detail", os.path.join(shots, "suite-and-case.png"))
+            shoot(b, "#matrix", os.path.join(shots, "dashboard-matrix.png"))
+            shoot(b, "#cost-chart", os.path.join(shots, "dashboard-cost-chart.png"))
 
         # ---------------------------------------------------------- the case view's geometry
         geo = b.eval(GEOMETRY % "document.querySelector('#case-view #cost-chart')")
@@ -153,7 +155,7 @@ def main():
         check(marks == want and want, "the memory trend marks exactly the memory gates aalab compare trips: %s" % marks)
         check(all(m[0] == ids[2] for t in trends for m in t["marks"]), "and marks no other job")
         if shots:
-            shoot(b, "#trends", os.path.join(shots, "trends-memory.png"))
+            shoot(b, ".trend", os.path.join(shots, "dashboard-trend-memory.png"))
     finally:
         if b:
             b.close()
