@@ -47,4 +47,10 @@ const char aa_report_style[] =
 	"table.cost tr.detail td{font-size:12px;color:var(--mute);padding-top:0;border-bottom:1px solid var(--line)}"
 	"table.cost tr:not(.detail) td{border-bottom:0}table.cost tr.detail b{font-weight:600;color:#334155}"
 	"svg .leader{stroke-width:1;opacity:.8}svg.passes{max-width:100%}svg .pass-names{font-size:12px;fill:#0f172a}"
+	/* a suite's cases x methods matrix: method names written upwards so that 14 columns fit */
+	".matrix-wrap{overflow-x:auto}table.matrix{width:auto;font-size:12.5px}table.matrix th.m{vertical-align:bottom;"
+	"padding:4px 2px;white-space:nowrap}table.matrix th.m span{writing-mode:vertical-rl;transform:rotate(180deg)}"
+	"table.matrix td{text-align:center;min-width:44px;padding:5px 3px;border:1px solid #fff}"
+	"table.matrix td.front{box-shadow:inset 0 0 0 2px #0f172a;font-weight:700}table.matrix th.case{font-weight:500;"
+	"white-space:nowrap;background:none}"
 	".glossary dt{font-weight:600;margin-top:8px}.glossary dd{margin:2px 0 0 18px;color:#334155}";
