@@ -21,6 +21,15 @@ function casesOf(doc) {
 const psnrOf = m => m.metrics && m.metrics.psnr ? (m.metrics.psnr.identical ? Infinity : m.metrics.psnr.mean) : null;
 const meanOf = (m, k) => m.metrics && m.metrics[k] && typeof m.metrics[k].mean === "number" ? m.metrics[k].mean : null;
 const familyOf = m => m.name === "user" && m.user_method ? m.user_method.name : m.name;
+/* m's counterpart in a baseline case, paired as `aalab compare` pairs them: the same label, else the one
+ * method of the same name (ssaa:16 against ssaa:4). */
+function baseMethod(baseCase, m) {
+  if (!baseCase) return null;
+  const same = baseCase.methods.find(x => x.label === m.label);
+  if (same) return same;
+  const named = baseCase.methods.filter(x => x.name === m.name);
+  return named.length === 1 ? named[0] : null;
+}
 
 /* What a matrix cell shows: [value, text], value null when there is nothing to show. */
 const MATRIX_MODES = {
@@ -30,7 +39,7 @@ const MATRIX_MODES = {
     return p === Infinity ? Infinity : p - q;
   }},
   over_baseline: {title: "PSNR dB over the baseline job (higher is better)", diverging: true, value: (m, c, base) => {
-    const bc = base && base.get(c.id), bm = bc && bc.methods.find(x => x.label === m.label);
+    const bm = baseMethod(base && base.get(c.id), m);
     const p = psnrOf(m), q = bm ? psnrOf(bm) : null;
     if (p === null || q === null) return null;
     if (p === Infinity && q === Infinity) return 0;
@@ -274,7 +283,7 @@ function caseTable(c, baseCase) {
       p === Infinity ? "\u2013" : pn === null || !isFinite(pn) || p === null ? "\u2013" : (p - pn >= 0 ? "+" : "") + (p - pn).toFixed(2),
       fmt(meanOf(m, "ssim"), 4), fmt(meanOf(m, "flip"), 4), fmt(meanOf(m, "flicker"), 3)];
     if (baseCase) {
-      const b = baseCase.methods.find(x => x.label === m.label);
+      const b = baseMethod(baseCase, m);
       const bp = b ? psnrOf(b) : null;
       cells.push(b && p !== null && bp !== null && isFinite(p) && isFinite(bp) ? (p - bp >= 0 ? "+" : "") + (p - bp).toFixed(2) : "\u2013",
                  b && b.gpu_ms && m.gpu_ms && b.gpu_ms.median > 0 ? ((m.gpu_ms.median / b.gpu_ms.median - 1) * 100 >= 0 ? "+" : "") +
