@@ -6,7 +6,8 @@ ssaa:4, which trips the memory gate against the second). Checks from the DOM at 
 - the matrix: one row per case, one cell per method, each cell's value and text the PSNR over `none` of
   results.json, the front ringed exactly, each case's verdict headline and warning codes shown; a click
   on a cell opens that case;
-- the case view: one point per method; no two labels overlap, no label covers a point, each label is
+- the case view: one point per method (and a chart of 14 crowded methods drawn by the page's code, with
+  a method family: its line and legend entry; none without verdict.families); no two labels overlap, no label covers a point, each label is
   nearer its own point than any other or joined to it by a leader line; axis ticks are round (1, 2 or 5
   times a power of ten, evenly stepped);
 - every chart fits its card and nothing is wider than the page;
@@ -122,6 +123,11 @@ def main():
         crowd = b.eval(CROWD)
         check(crowd == 14, "a crowded chart of 14 methods is drawn")
         check_labels(b.eval(GEOMETRY % "document.querySelector('#crowd svg')"), "crowded: ")
+        fam = b.eval("[...document.querySelectorAll('#crowd polyline.family-line')].map(l => [l.dataset.family,"
+                     " l.getAttribute('points').split(' ').length, document.querySelectorAll('#crowd .family-legend li').length])")
+        real = b.eval("document.querySelectorAll('#case-view .family-line, #case-view .family-legend').length")
+        check(fam == [["fxaa", 2, 1]] and real == 0, "verdict.families draws a line per family through its presets, "
+              "with a legend entry; a verdict without families draws none: %s, %s" % (fam, real))
 
         # -------------------------------------------------------------------------- fits at 1280 px
         fit = b.eval("""(() => {
@@ -183,7 +189,8 @@ CROWD = """(() => {
                    'floor', 'fxaa-cs', 'taa-sobel'];
     const methods = names.map((label, k) => ({label, gpu_ms: {median: 1.5 + 0.05 * k, p10: 1.4, p90: 1.9},
                                                metrics: {psnr: {mean: 21 + 0.1 * (k % 5), identical: false}}}));
-    const fig = costChart({id: 'crowd', doc: {methods, verdict: {front: ['none']}}}, {}, null);
+    const families = [{family: 'fxaa', methods: ['fxaa', 'fxaa-cs'], front: ['fxaa']}];
+    const fig = costChart({id: 'crowd', doc: {methods, verdict: {front: ['none'], families}}}, {}, null);
     fig.id = 'crowd';
     document.body.append(fig);
     return fig.querySelectorAll('g.point').length;
