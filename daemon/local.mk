@@ -13,7 +13,7 @@ aalabd_LDADD = $(ENGINE_LIBS)
 
 # the dashboard page aalabd serves at /
 webdir = $(pkgdatadir)/web
-dist_web_DATA = web/index.html
+dist_web_DATA = web/index.html web/dashboard.css web/charts.js web/suite.js web/trends.js web/dashboard.js
 
 # systemd units (the service names the installed aalabd and configuration file) and the configuration
 systemdunitdir = $(prefix)/lib/systemd/system

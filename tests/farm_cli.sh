@@ -42,6 +42,23 @@ PY
 grep -q 'href="cases/cutout-fence_default_64x36/report.html"' "$TMP/a/report.html" &&
 	grep -q "Summary across cases" "$TMP/a/report.html" && grep -q "branch=main" "$TMP/a/report.html" &&
 	pass "report.html: the summary across cases links each case's report and shows the labels" || fail "suite report"
+# the cases x methods matrix: each cell the PSNR over none of results.json, the front ringed
+$PY - "$TMP/a" <<'PY' && pass "report.html: the matrix's cells are results.json's PSNR over none, the front ringed" || fail "suite matrix"
+import json, os, re, sys
+d = sys.argv[1]
+r = json.load(open(os.path.join(d, "results.json")))
+page = open(os.path.join(d, "report.html")).read()
+table = re.search(r'<table class="matrix">(.*?)</table>', page, re.S).group(1)
+rows = re.findall(r'<tr><th class="case"><a [^>]*>([^<]*)</a></th>(.*?)</tr>', table)
+assert [c for c, _ in rows] == [c["id"] for c in r["cases"]], rows
+for (cid, body), case in zip(rows, r["cases"]):
+    cells = re.findall(r'<td class="n( front)?"[^>]*>([^<]*)</td>', body)
+    ms = case["methods"]
+    none = next(m for m in ms if m["label"] == "none")["metrics"]["psnr"]["mean"]
+    want = [("%+.1f" % (m["metrics"]["psnr"]["mean"] - none), m["label"] in case["verdict"]["front"]) for m in ms]
+    got = [(text, bool(front)) for front, text in cells]
+    assert got == want, (cid, got, want)
+PY
 grep -q "Labels" "$TMP/a/cases/thin-wires_default_64x36/report.html" && pass "a case's report shows the labels" ||
 	fail "case report labels"
 

@@ -2,7 +2,8 @@
 # image viewer.
 # viewer.js and viewer.css are edited as themselves and embedded at build time as C byte arrays
 # (viewer_assets.h).
-libaaengine_a_SOURCES += engine/report/report_html.c engine/report/report_viewer.c \
+libaaengine_a_SOURCES += engine/report/report_html.c engine/report/report_viewer.c engine/report/report_parts.h \
+	engine/report/report_charts.c engine/report/report_tables.c engine/report/report_style.c \
 	engine/report/report_verdict.c engine/report/report_regions.c engine/report/report.h engine/report/suite_report.c
 VIEWER_ASSETS = engine/report/viewer.js engine/report/viewer.css
 EXTRA_DIST += $(VIEWER_ASSETS)

@@ -25,14 +25,17 @@ int aa_report_write_viewer_frames(const struct aa_job_result *r, const char *dir
 /* report.html's top (report_verdict.c): the verdict object and the warnings[] of results.json, as they
  * are (either may be NULL). */
 void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warnings);
-/* A chart point's label: where it is drawn (x, baseline y; anchored at its right end when `end`) and the
- * span it takes, x0..x1. aa_report_spread_labels moves labels down until no two overlap (report_html.c). */
+/* A chart point's label: its box x0..x1 (on entry: its text's width), y0..y1; where its text starts (x,
+ * baseline y); and when it sits away from its point, the leader line's end (lx, ly) on the box.
+ * aa_report_place_labels puts every label beside its point or on a leader line, over no other label and
+ * no point, inside box (x0, y0, x1, y1) (report_charts.c). */
 struct aa_point_label {
-	double x, y, x0, x1;
-	bool end;
+	double x, y, x0, y0, x1, y1, lx, ly;
+	bool leader;
 };
-#define AA_LABEL_LINE 13.0 /* px between two labels' baselines */
-void aa_report_spread_labels(struct aa_point_label *labels, int n);
+#define AA_LABEL_HEIGHT 15.0 /* px of a label's box */
+#define AA_LABEL_DOT 10.0    /* px around a point that no label covers (its front ring included) */
+void aa_report_place_labels(struct aa_point_label *l, const double *px, const double *py, int n, const double box[4]);
 
 /* Writes results.json and report.html into dir (and each case's report.html into its directory). */
 int aa_suite_results_write(const struct aa_suite_result *r, const char *dir, struct aa_error *err);

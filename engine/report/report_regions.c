@@ -1,12 +1,15 @@
 /* The worst regions of a job for report.html: the square tiles where the methods differ most from the
  * reference by FLIP, summed over every method and every frame, each with the frame where it is worst.
  * Read back from the FLIP maps beside the report (flip/<method>/NNNN.png store the magma index
- * int(255 v + 0.5) of each pixel's value v, so the value comes back to within 1/510). */
+ * int(255 v + 0.5) of each pixel's value v, so the value comes back to within 1/510). Each region carries
+ * its crops (reference, then every method, as PNG data: URLs of a few hundred bytes), so the page draws
+ * them at once, before or without the viewer's frame scripts. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "image/image.h"
 #include "image/png_io.h"
 #include "metrics/flip.h"
 #include "results/results.h"
@@ -58,6 +61,54 @@ static int add_map(const char *path, int width, int height, int tile, int tiles_
 	return 0;
 }
 
+/* The tile (x, y, w, h) of the PNG at dir/rel as a data: URL, or null when the file cannot be read or is
+ * not the job's size. */
+static json_t *crop_url(const char *dir, const char *rel, int width, int height, int x, int y, int w, int h)
+{
+	static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+	char path[4096];
+	struct aa_file_pixels px = { 0 };
+	struct aa_error err = { 0 };
+	if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, rel) >= sizeof path ||
+	    aa_png_read(path, false, &px, &err) || px.width != width || px.height != height || px.channels < 3) {
+		free(px.data);
+		return json_null();
+	}
+	uint8_t tile[4 * 64 * 64];
+	struct aa_image_rgba8 img = { .width = w, .height = h, .pixels = tile };
+	for (int j = 0; j < h; j++)
+		for (int i = 0; i < w; i++) {
+			const uint8_t *s = (const uint8_t *)px.data + ((size_t)(y + j) * (size_t)width + (size_t)(x + i)) * (size_t)px.channels;
+			uint8_t *d = tile + 4 * (j * w + i);
+			d[0] = s[0], d[1] = s[1], d[2] = s[2], d[3] = px.channels == 4 ? s[3] : 255;
+		}
+	free(px.data);
+	uint8_t *png = NULL;
+	size_t n = 0;
+	if (aa_png_encode(&img, &png, &n, &err))
+		return json_null();
+	const char prefix[] = "data:image/png;base64,";
+	char *url = malloc(sizeof prefix + 4 * (n / 3 + 1));
+	if (!url) {
+		free(png);
+		return json_null();
+	}
+	char *o = url + sizeof prefix - 1;
+	memcpy(url, prefix, sizeof prefix - 1);
+	for (size_t i = 0; i < n; i += 3) {
+		const unsigned v = (unsigned)png[i] << 16 | (i + 1 < n ? (unsigned)png[i + 1] << 8 : 0) | (i + 2 < n ? png[i + 2] : 0);
+		*o++ = b64[v >> 18 & 63];
+		*o++ = b64[v >> 12 & 63];
+		*o++ = i + 1 < n ? b64[v >> 6 & 63] : '=';
+		*o++ = i + 2 < n ? b64[v & 63] : '=';
+	}
+	*o = '\0';
+	free(png);
+	json_t *s = json_string(url);
+	free(url);
+	return s ? s : json_null();
+}
+
 json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, int tile, int count)
 {
 	json_t *out = json_array();
@@ -100,8 +151,16 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 		const int w = x + tile > width ? width - x : tile, h = y + tile > height ? height - y : tile;
 		/* mean FLIP per pixel of the tile over methods and frames */
 		const double mean = total[best] / ((double)w * h * r->method_count * frames);
-		json_array_append_new(out, json_pack("{si si si si si sf}", "x", x, "y", y, "w", w, "h", h, "ordinal",
-						     worst_frame[best], "flip_mean", mean));
+		json_t *crops = json_array();
+		char rel[600];
+		aa_results_frame_relpath("frames", "reference", worst_frame[best], rel, sizeof rel);
+		json_array_append_new(crops, w <= 64 && h <= 64 ? crop_url(dir, rel, width, height, x, y, w, h) : json_null());
+		for (int m = 0; m < r->method_count; m++) {
+			aa_results_frame_relpath("frames", r->methods[m].label, worst_frame[best], rel, sizeof rel);
+			json_array_append_new(crops, w <= 64 && h <= 64 ? crop_url(dir, rel, width, height, x, y, w, h) : json_null());
+		}
+		json_array_append_new(out, json_pack("{si si si si si sf so}", "x", x, "y", y, "w", w, "h", h, "ordinal",
+						     worst_frame[best], "flip_mean", mean, "crops", crops));
 		total[best] = 0;
 	}
 	if (!ok)

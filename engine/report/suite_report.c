@@ -69,6 +69,84 @@ static double flip_mean(const struct aa_method_result *m)
 	return n ? sum / n : NAN;
 }
 
+/* Cases x methods: each cell the method's mean PSNR over `none` in its case, in dB, blue when better and
+ * orange when worse (stronger with size), ringed when on the case's front; columns are the first case's
+ * methods. The numbers at a glance, before the full table. */
+static void psnr_matrix(FILE *o, const struct aa_suite_result *r)
+{
+	const struct aa_job_result *first = r->case_count > 0 ? r->cases[0] : NULL;
+	if (!first || first->method_count < 1)
+		return;
+	double big = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		if (pass == 1) {
+			fputs("<h2 id=\"matrix\">PSNR over none, dB</h2>\n<p class=\"note\">Each cell: the method's mean PSNR "
+			      "minus that of <code>none</code> in the same case; blue is better, orange worse; a ring marks a "
+			      "method on its case's front. A case links its report.</p>\n<div class=\"matrix-wrap\"><table "
+			      "class=\"matrix\">\n<tr><th>case</th>", o);
+			for (int i = 0; i < first->method_count && i < AA_MAX_METHODS; i++) {
+				fputs("<th class=\"m\"><span>", o);
+				aa_report_esc(o, first->methods[i].label);
+				fputs("</span></th>", o);
+			}
+			fputs("</tr>\n", o);
+		}
+		for (int c = 0; c < r->case_count; c++) {
+			const struct aa_job_result *cr = r->cases[c];
+			double none = NAN;
+			for (int i = 0; i < cr->method_count && i < AA_MAX_METHODS; i++)
+				if (!strcmp(cr->methods[i].label, "none")) {
+					struct aa_method_summary s;
+					aa_method_summarize(&cr->methods[i], &s);
+					none = s.psnr_identical ? NAN : s.psnr_mean;
+				}
+			json_t *v = pass ? aa_verdict_json(cr) : NULL;
+			if (pass) {
+				char id[512], rel[600];
+				aa_case_id(&r->spec, c, id, sizeof id);
+				aa_case_relpath(&r->spec, c, rel, sizeof rel);
+				fputs("<tr><th class=\"case\"><a href=\"", o);
+				aa_report_esc(o, rel);
+				fputs("/report.html\">", o);
+				aa_report_esc(o, id);
+				fputs("</a></th>", o);
+			}
+			for (int k = 0; k < first->method_count && k < AA_MAX_METHODS; k++) {
+				int i = -1;
+				for (int j = 0; j < cr->method_count && j < AA_MAX_METHODS; j++)
+					if (!strcmp(cr->methods[j].label, first->methods[k].label))
+						i = j;
+				struct aa_method_summary s = { 0 };
+				if (i >= 0)
+					aa_method_summarize(&cr->methods[i], &s);
+				const double d = i >= 0 && !s.psnr_identical ? s.psnr_mean - none : NAN;
+				if (!pass) {
+					if (isfinite(d))
+						big = fmax(big, fabs(d));
+					continue;
+				}
+				bool front = false;
+				size_t f;
+				json_t *l;
+				json_array_foreach(json_object_get(v, "front"), f, l)
+					front = front || (i >= 0 && !strcmp(json_string_value(l), cr->methods[i].label));
+				const double a = isfinite(d) && big > 0 ? fabs(d) / big : 0;
+				if (i >= 0 && s.psnr_identical)
+					fprintf(o, "<td class=\"n%s\" style=\"background:hsl(210 70%% 55%%)\">ident.</td>", front ? " front" : "");
+				else if (isfinite(d))
+					fprintf(o, "<td class=\"n%s\" style=\"background:hsl(%d %d%% %.0f%%)\">%+.1f</td>", front ? " front" : "",
+						d >= 0 ? 210 : 28, d >= 0 ? 70 : 90, 96 - 40 * a, d);
+				else
+					fputs("<td class=\"n\">&ndash;</td>", o);
+			}
+			if (pass)
+				fputs("</tr>\n", o);
+			json_decref(v);
+		}
+	}
+	fputs("</table></div>\n", o);
+}
+
 int aa_suite_report_write_html(const struct aa_suite_result *r, const char *dir, struct aa_error *err)
 {
 	char *buf = NULL;
@@ -140,6 +218,7 @@ int aa_suite_report_write_html(const struct aa_suite_result *r, const char *dir,
 	if (warned)
 		fprintf(o, "<p class=\"note\">%d warning%s across the cases: each case's report lists its own, with what to "
 			   "do.</p>\n", warned, warned == 1 ? "" : "s");
+	psnr_matrix(o, r);
 	fputs("<h2 id=\"summary\">Summary across cases</h2>\n<p class=\"note\">GPU ms: the median over every timed "
 	      "render of the case (frames \xc3\x97 timing.repeat), with the 10th to 90th percentile. PSNR from the mean "
 	      "MSE over frames. Each case links its own report.</p>\n<table>\n<tr><th>case</th><th>method</th>"

@@ -401,12 +401,18 @@ function drawChart() {
 	if (!Number.isFinite(lo)) { lo = 0; hi = 50; }
 	lo = Math.floor(lo - 1); hi = Math.ceil(hi + 1);
 	const x = f => N > 1 ? L + (R - L) * f / (N - 1) : (L + R) / 2;
-	const y = v => v === null ? T : T + 8 + (B - T - 8) * (hi - v) / (hi - lo); /* identical frames on top */
+	/* frames identical to the reference (infinite PSNR) sit on a strip above the scale, named only when
+	 * there are any: the top of the scale is a finite PSNR, never "identical" */
+	const anyIdentical = D.methods.some(m => m.identical.some(i => i));
+	const top = anyIdentical ? T + 14 : T;
+	const y = v => v === null ? T + 4 : top + 8 + (B - top - 8) * (hi - v) / (hi - lo);
 	chart.dataset.left = L; chart.dataset.right = R;
 	let s = `<rect x="${L}" y="${T}" width="${R - L}" height="${B - T}" fill="#fff" stroke="#cbd5e1"/>` +
-		`<text x="${L - 4}" y="${T + 12}" text-anchor="end" class="t">${hi}</text><text x="${L - 4}" y="${B}" text-anchor="end" class="t">${lo}</text>` +
+		`<text x="${L - 4}" y="${top + 12}" text-anchor="end" class="t">${hi}</text><text x="${L - 4}" y="${B}" text-anchor="end" class="t">${lo}</text>` +
+		(anyIdentical ? `<line x1="${L}" x2="${R}" y1="${top}" y2="${top}" stroke="#94a3b8" stroke-dasharray="3 2"/>` +
+			`<text x="${L + 4}" y="${T + 8}" class="t vw-identical">identical to the reference</text>` : "") +
 		`<text x="${L}" y="${B + 14}" class="t">${D.frames[0]}</text><text x="${R}" y="${B + 14}" text-anchor="end" class="t">${D.frames[N - 1]}</text>` +
-		`<text x="${(L + R) / 2}" y="${B + 28}" text-anchor="middle" class="t">frame \u00b7 PSNR dB (top edge: identical)</text>`;
+		`<text x="${(L + R) / 2}" y="${B + 28}" text-anchor="middle" class="t">frame \u00b7 PSNR dB (mean over the frame; higher is closer)</text>`;
 	D.methods.forEach(m => {
 		s += `<polyline fill="none" stroke="${m.color}" stroke-width="1.5" points="${m.psnr.map((v, f) =>
 			x(f).toFixed(1) + "," + y(m.identical[f] ? null : v).toFixed(1)).join(" ")}"/>`;
@@ -452,6 +458,21 @@ function drawHistogram(fr) {
 /* Each region (report_regions.c: the tiles with the most FLIP error over every method and frame) as
  * close-ups at 8x, the reference and every method side by side, in the frame where it is worst; a
  * click shows that place and frame in the panes above at 8x. */
+/* A crop from its data: URL in the page (report_regions.c), at 8x; without one, a note in the square
+ * until the frame's script has loaded, rather than an empty square. */
+function drawCrop(c, url, g) {
+	const gc = c.getContext("2d");
+	gc.imageSmoothingEnabled = false;
+	if (!url) {
+		gc.fillStyle = "#e2e8f0"; gc.fillRect(0, 0, c.width, c.height);
+		gc.fillStyle = "#475569"; gc.font = "12px sans-serif";
+		gc.fillText("loading frame " + D.frames[g.ordinal] + "\u2026", 6, 18);
+		return;
+	}
+	const img = new Image();
+	img.onload = () => gc.drawImage(img, 0, 0, g.w * 8, g.h * 8);
+	img.src = url;
+}
 function drawRegions() {
 	if (!D.regions.length) return;
 	regions.append(el("div", { class: "vw-k" }, "worst regions first: where the methods differ most from the reference " +
@@ -464,12 +485,14 @@ function drawRegions() {
 		} });
 		row.append(el("div", { class: "vw-cap" }, "#" + (k + 1) + ": frame " + D.frames[g.ordinal] + ", pixels " + g.x + "–" +
 			(g.x + g.w - 1) + " × " + g.y + "–" + (g.y + g.h - 1) + ", mean FLIP " + g.flip_mean.toFixed(3)));
-		const crops = sources.map(([id, name]) => {
+		const crops = sources.map(([id, name], k) => {
 			const c = el("canvas", { width: g.w * 8, height: g.h * 8, class: "vw-crop" });
 			row.append(el("figure", { class: "vw-pane" }, c, el("div", { class: "vw-cap" }, name)));
+			drawCrop(c, g.crops && g.crops[k], g);
 			return [id, c];
 		});
 		regions.append(row);
+		if (g.crops && g.crops.every(u => u)) return; /* drawn from the page's own data */
 		loadFrame(g.ordinal).then(fr => {
 			if (!fr.ready) return;
 			for (const [id, c] of crops) {

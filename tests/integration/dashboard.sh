@@ -14,7 +14,7 @@ browse() {
 }
 browse --dump-dom >"$TMP/dom.html"
 grep -q "data-job=\"$id\"" "$TMP/dom.html" && pass "the page lists job $id" || { fail "job $id not listed"; head -c 2000 "$TMP/dom.html"; }
-points=$(grep -o '<circle class="method"' "$TMP/dom.html" | wc -l)
+points=$(grep -o '<g class="point[^"]*" data-method=' "$TMP/dom.html" | wc -l)
 [ "$points" -eq 2 ] && pass "the chart has one point per method" || fail "chart points: $points"
 grep -q 'GPU ms per frame' "$TMP/dom.html" && grep -q 'ssaa:4' "$TMP/dom.html" && pass "axes and labels drawn" || fail "chart labels"
 # the verdict line is results.json's headline as it is, and the warnings follow it

@@ -77,8 +77,8 @@ EXTRA_DIST += $(DAEMON_TESTS) tests/integration/daemon_lib.py tests/integration/
 	tests/integration/valgrind.supp
 
 # report.html's viewer in headless Chromium (skipped when chromium is not installed); cdp.py drives it
-TESTS += tests/integration/viewer_browser.py
-EXTRA_DIST += tests/integration/viewer_browser.py tests/integration/cdp.py
+TESTS += tests/integration/viewer_browser.py tests/integration/dashboard_browser.py
+EXTRA_DIST += tests/integration/viewer_browser.py tests/integration/dashboard_browser.py tests/integration/cdp.py
 
 # a throwaway one-node Slurm cluster (root; skips where Slurm cannot run, fails under AALAB_REQUIRE_SLURM)
 TESTS += tests/integration/slurm_farm.py

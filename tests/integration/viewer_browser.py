@@ -357,6 +357,37 @@ def through_daemon(browser):
         d.cleanup()
 
 
+def page_checks(browser, job, tmp):
+    """report.html at 1280 px: nothing wider than its card, the verdict in the first screen; and the worst
+    regions drawn from the page's own data when the frame scripts cannot load (report.html alone)."""
+    browser.send("Emulation.setDeviceMetricsOverride", session=True, width=1280, height=900, deviceScaleFactor=1,
+                 mobile=False)
+    browser.navigate("file://" + os.path.join(job, "report.html"))
+    browser.wait_for("window.aalabViewer && aalabViewer.ready")
+    wide = browser.eval("""(() => [...document.querySelectorAll('main table, main figure, main svg, main .card, main .cards')]
+        .filter(e => e.getBoundingClientRect().right > e.parentElement.getBoundingClientRect().right + 0.5)
+        .map(e => e.tagName + '.' + (e.getAttribute('class') || '')))()""")
+    page = browser.eval("document.documentElement.scrollWidth")
+    check(not wide and page <= 1280, "at 1280 px nothing overflows its card (page %d px): %s" % (page, wide[:4]))
+    top = browser.eval("document.querySelector('.verdict').getBoundingClientRect().top")
+    check(top < 900, "the verdict is in the first screen (top at %d px)" % top)
+    alone = os.path.join(tmp, "alone")
+    os.makedirs(alone)
+    shutil.copy(os.path.join(job, "report.html"), alone)
+    browser.navigate("file://" + os.path.join(alone, "report.html"))
+    browser.wait_for("document.querySelectorAll('.vw-region canvas').length > 0", 10)
+    v = Viewer(browser, job)
+    g = browser.eval("JSON.parse(document.getElementById('aa-viewer-data').textContent).regions[0]")
+    ref = v.png("frames", None, g["ordinal"])
+    drawn = browser.wait_for("""(() => { const c = document.querySelector('.vw-region[data-region="0"] canvas');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        const r = %s; for (let y = 0; y < c.height; y++) for (let x = 0; x < c.width; x++) {
+          const i = (y * c.width + x) * 4, p = r[y >> 3][x >> 3];
+          if (d[i] !== p[0] || d[i + 1] !== p[1] || d[i + 2] !== p[2]) return false; }
+        return true; })()""" % json.dumps([row[g["x"]:g["x"] + g["w"]] for row in ref[g["y"]:g["y"] + g["h"]]]), 10)
+    check(drawn, "without the viewer's frame scripts, the worst region's reference close-up is drawn from the page")
+
+
 def main():
     if not cdp.find_chromium():
         print("SKIP: chromium is not installed (scripts/install-deps.sh installs it)")
@@ -374,6 +405,7 @@ def main():
         browser = cdp.Chromium()
         browser.navigate("file://" + os.path.join(job, "report.html"))
         run_steps(Viewer(browser, job), shots, at)
+        page_checks(browser, job, tmp)
         if "--report" not in args:
             through_daemon(browser)
         errors = [e for e in browser.events if e.get("method") == "Runtime.exceptionThrown"]

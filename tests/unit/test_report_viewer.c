@@ -365,29 +365,44 @@ static void test_exr_event(void **state)
 	free_result(r);
 }
 
-/* The cost-accuracy chart's labels: two methods at one point (fxaa and fxaa-cs) get a line each, a label
- * apart from the others keeps its place, and a stack of three ends three lines deep. */
-static void test_spread_labels(void **state)
+/* The cost-accuracy chart's labels: 14 methods crowded within a few pixels (two at one point) each get
+ * a label over no other label and no point, inside the plot, nearer its own point than any other's or
+ * joined to it by a leader line ending on its box; a label with room stays beside its point. */
+static void test_place_labels(void **state)
 {
 	(void)state;
-	struct aa_point_label l[4] = {
-		{.x = 100, .y = 50, .x0 = 100, .x1 = 140},
-		{.x = 102, .y = 51, .x0 = 102, .x1 = 150}, /* on top of the first */
-		{.x = 400, .y = 50, .x0 = 400, .x1 = 430}, /* same height, far away */
-		{.x = 120, .y = 55, .x0 = 120, .x1 = 160}, /* overlaps both of the first two */
-	};
-	aa_report_spread_labels(l, 4);
-	assert_true(l[0].y == 50 && l[2].y == 50);
-	assert_true(l[1].y == 50 + AA_LABEL_LINE);
-	assert_true(l[3].y == 50 + 2 * AA_LABEL_LINE);
-	for (int i = 0; i < 4; i++)
-		for (int j = 0; j < i; j++)
-			if (l[i].x0 < l[j].x1 && l[j].x0 < l[i].x1)
-				assert_true(fabs(l[i].y - l[j].y) >= AA_LABEL_LINE);
-	/* labels where a line is below the precision of y (a PSNR range of next to nothing) end: they looped */
-	struct aa_point_label far[2] = {{.x = 1, .y = 1e18, .x0 = 1, .x1 = 40}, {.x = 2, .y = 1e18, .x0 = 2, .x1 = 40}};
-	aa_report_spread_labels(far, 2);
-	assert_true(far[0].y == 1e18);
+	enum { N = 15 };
+	struct aa_point_label l[N];
+	double px[N], py[N];
+	const double box[4] = { 60, 20, 700, 330 };
+	for (int i = 0; i < N - 1; i++) {
+		px[i] = 200 + 3 * i;
+		py[i] = 150 + 2 * (i % 5);
+		l[i] = (struct aa_point_label){ .x0 = 0, .x1 = 6.6 * (4 + i % 6) };
+	}
+	px[1] = px[0], py[1] = py[0]; /* fxaa and fxaa-cs: the same point */
+	px[N - 1] = 600, py[N - 1] = 60; /* alone */
+	l[N - 1] = (struct aa_point_label){ .x0 = 0, .x1 = 40 };
+	aa_report_place_labels(l, px, py, N, box);
+	for (int i = 0; i < N; i++) {
+		assert_true(l[i].x0 >= box[0] && l[i].x1 <= box[2] && l[i].y0 >= box[1] && l[i].y1 <= box[3]);
+		assert_true(l[i].y1 - l[i].y0 == AA_LABEL_HEIGHT);
+		for (int j = 0; j < N; j++) {
+			if (j != i)
+				assert_false(l[i].x0 < l[j].x1 && l[j].x0 < l[i].x1 && l[i].y0 < l[j].y1 && l[j].y0 < l[i].y1);
+			assert_false(l[i].x0 < px[j] + AA_LABEL_DOT && px[j] - AA_LABEL_DOT < l[i].x1 &&
+				     l[i].y0 < py[j] + AA_LABEL_DOT && py[j] - AA_LABEL_DOT < l[i].y1);
+		}
+		if (l[i].leader) { /* the line ends on the box */
+			assert_true(l[i].lx >= l[i].x0 && l[i].lx <= l[i].x1 && l[i].ly >= l[i].y0 && l[i].ly <= l[i].y1);
+		} else {
+			const double own = hypot(fmax(fmax(l[i].x0 - px[i], 0), px[i] - l[i].x1),
+						 fmax(fmax(l[i].y0 - py[i], 0), py[i] - l[i].y1));
+			assert_true(own <= AA_LABEL_DOT + 4);
+		}
+	}
+	assert_false(l[N - 1].leader); /* room beside it */
+	assert_true(l[N - 1].x0 >= px[N - 1]);
 }
 
 int main(void)
@@ -398,7 +413,7 @@ int main(void)
 		cmocka_unit_test(test_viewer_frames),
 		cmocka_unit_test(test_worst_regions),
 		cmocka_unit_test(test_exr_event),
-		cmocka_unit_test(test_spread_labels),
+		cmocka_unit_test(test_place_labels),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -521,11 +521,11 @@ static void test_report_html(void **state)
 	snprintf(path, sizeof path, "%s/report.html", dir);
 	char *html = read_all(path);
 	assert_non_null(strstr(html, "<!DOCTYPE html>"));
-	/* Scatter, threshold curves and (3 frames) PSNR per frame. */
+	/* Scatter, GPU time by pass, threshold curves and (3 frames) PSNR per frame. */
 	int svgs = 0;
 	for (const char *p = html; (p = strstr(p, "<svg")); p++)
 		svgs++;
-	assert_int_equal(svgs, 3);
+	assert_int_equal(svgs, 4);
 	/* The hostile label is text, never markup: escaped in HTML, \u003c in the viewer's JSON; the only
 	 * scripts are the viewer's data and code, inline (test_report_viewer.c tests them). */
 	assert_null(strstr(html, "<script>alert"));

@@ -1,0 +1,245 @@
+#!/usr/bin/python3
+"""The dashboard in a real browser (headless Debian chromium over the DevTools protocol, cdp.py), served by
+aalabd after a single-case job and three labelled jobs of a suite (the third with ssaa:16 standing in for
+ssaa:4, which trips the memory gate against the second). Checks from the DOM at 1280 px:
+- the trend selector opens on the most recent suite;
+- the matrix: one row per case, one cell per method, each cell's value and text the PSNR over `none` of
+  results.json, the front ringed exactly, each case's verdict headline and warning codes shown; a click
+  on a cell opens that case;
+- the case view: one point per method (and a chart of 14 crowded methods drawn by the page's code, with
+  a method family: its line and legend entry; none without verdict.families); no two labels overlap, no label covers a point, each label is
+  nearer its own point than any other or joined to it by a leader line; axis ticks are round (1, 2 or 5
+  times a power of ten, evenly stepped);
+- every chart fits its card and nothing is wider than the page;
+- trends: every series has one legend entry, and within a chart no two entries look alike (colour, dash,
+  marker); the gate markers on the memory trend are exactly the memory gates `aalab compare` trips for the
+  third job against the second.
+Skipped (77) only when chromium is not installed. With --shots DIR it keeps screenshots of each view
+(docs/img/dashboard-*.png are these: --shots docs/img)."""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cdp
+from daemon_lib import AALAB, Daemon, check, finish, http_get
+
+WIDTH = 1280
+
+
+def submit(d, args):
+    r = subprocess.run([AALAB, "submit", "--watch", "--quiet", "--connect", "unix:" + d.socket] + args,
+                       capture_output=True, text=True, timeout=600)
+    if r.returncode != 0:
+        print(r.stdout, r.stderr)
+        raise SystemExit("a job failed")
+    return r.stdout.split()[0]
+
+
+def main():
+    if not cdp.find_chromium():
+        print("SKIP: chromium not installed (scripts/install-deps.sh)")
+        sys.exit(77)
+    shots = sys.argv[sys.argv.index("--shots") + 1] if "--shots" in sys.argv else None
+    d = Daemon(http=True)
+    b = None
+    try:
+        suite = {"suite": "dash", "scenes": ["thin-wires", "hard-edges"], "size": "64x36", "frames": 2,
+                 "reference": {"samples": 4}, "timing": {"repeat": 3}, "keep_frames": False,
+                 "methods": ["none", "ssaa:4", "msaa:4", "fxaa", "smaa", "taa", "gbaa", "copy", "floor"]}
+        path = os.path.join(d.tmp, "suite.json")
+        slow = os.path.join(d.tmp, "slow.json")
+        json.dump(suite, open(path, "w"))
+        suite["methods"][1] = "ssaa:16"
+        json.dump(suite, open(slow, "w"))
+        submit(d, ["--scene", "thin-wires", "--methods", "none,fxaa", "--frames", "2", "--size", "64x36",
+                   "--reference-samples", "4"])
+        ids = [submit(d, [path, "--label", "commit=c1", "--label", "branch=main", "--baseline", "latest:branch=main"]),
+               submit(d, [path, "--label", "commit=c2", "--label", "branch=main", "--baseline", "latest:branch=main"]),
+               submit(d, [slow, "--label", "commit=c3-slow", "--label", "branch=main", "--baseline", "latest:branch=main"])]
+        cmp = subprocess.run([AALAB, "compare", ids[1], ids[2], "--json", "--connect", "unix:" + d.socket],
+                             capture_output=True, text=True, timeout=120)
+        check(cmp.returncode == 1, "aalab compare: the slow job trips a gate against the one before")
+        tripped = json.loads(cmp.stdout)["tripped"]
+        results = json.loads(http_get(d.http_port, "/v1/jobs/%s/results.json" % ids[2])[2])
+
+        b = cdp.Chromium(WIDTH, 900)
+        b.navigate("http://127.0.0.1:%d/" % d.http_port)
+        check(b.wait_for("!!document.querySelector('#matrix') && !!document.querySelector('#cost-chart') && "
+                         "document.querySelectorAll('.trend-chart').length > 0", 60), "the dashboard draws its views")
+        check(b.eval("document.getElementById('trend-suite').value") == "dash",
+              "the trend selector opens on the most recent suite")
+
+        # ------------------------------------------------------------------ the matrix against results.json
+        cells = b.eval("""[...document.querySelectorAll('#matrix tr.case-row')].map(r => ({case: r.dataset.case,
+            headline: r.querySelector('.headline').textContent,
+            warnings: [...r.querySelectorAll('.warn-code')].map(w => w.textContent.replace(/^\\S+ /, '')),
+            cells: [...r.querySelectorAll('td.cell')].map(c => ({method: c.dataset.method, value: c.dataset.value,
+                     text: c.textContent, front: c.classList.contains('front')}))}))""")
+        check([r["case"] for r in cells] == [c["id"] for c in results["cases"]], "the matrix has a row per case")
+        bad = []
+        for row, case in zip(cells, results["cases"]):
+            by = {m["label"]: m for m in case["methods"]}
+            none = by["none"]["metrics"]["psnr"]["mean"]
+            if [c["method"] for c in row["cells"]] != [m["label"] for m in case["methods"]]:
+                bad.append((case["id"], "methods", [c["method"] for c in row["cells"]]))
+            for c in row["cells"]:
+                p = by[c["method"]]["metrics"]["psnr"]
+                want = math.inf if p["identical"] else p["mean"] - none
+                got = float(c["value"]) if c["value"] not in ("", "Infinity") else (math.inf if c["value"] else None)
+                text = "ident." if want == math.inf else "%+.1f" % want if round(want, 1) != 0 else "%.1f" % abs(want)
+                if got is None or (want != math.inf and abs(got - want) > 1e-9) or c["text"].lstrip("+-") != text.lstrip("+-"):
+                    bad.append((case["id"], c["method"], c["value"], c["text"], want))
+                if c["front"] != (c["method"] in case["verdict"]["front"]):
+                    bad.append((case["id"], c["method"], "front", c["front"]))
+            if row["headline"] != case["verdict"]["headline"]:
+                bad.append((case["id"], "headline", row["headline"]))
+            if row["warnings"] != [w["code"] for w in case.get("warnings", [])]:
+                bad.append((case["id"], "warnings", row["warnings"]))
+        check(not bad, "each matrix cell is results.json's PSNR over none, the front ringed, verdict and warnings "
+              "per case: %s" % bad[:4])
+
+        # -------------------------------------------------------------------- a click opens the case
+        second = results["cases"][1]["id"]
+        b.eval("document.querySelector('#matrix tr.case-row[data-case=\"%s\"] td.cell[data-method=\"fxaa\"]').click()" % second)
+        check(b.wait_for("document.querySelector('#case-view').dataset.case === %s" % json.dumps(second), 10),
+              "a click on a cell opens its case")
+        if shots:
+            shoot(b, "#matrix", os.path.join(shots, "dashboard-matrix.png"))
+            shoot(b, "#cost-chart", os.path.join(shots, "dashboard-cost-chart.png"))
+
+        # ---------------------------------------------------------- the case view's geometry
+        geo = b.eval(GEOMETRY % "document.querySelector('#case-view #cost-chart')")
+        case = results["cases"][1]
+        check(sorted(p["method"] for p in geo["points"]) == sorted(m["label"] for m in case["methods"]),
+              "the case view has one point per method")
+        check_labels(geo)
+        for axis in ("xticks", "yticks"):
+            check(round_ticks(geo[axis]), "%s are round and evenly stepped: %s" % (axis, geo[axis]))
+        # the same chart of 14 methods crowded within 0.7 ms and 0.4 dB, drawn by the page's own code
+        crowd = b.eval(CROWD)
+        check(crowd == 14, "a crowded chart of 14 methods is drawn")
+        check_labels(b.eval(GEOMETRY % "document.querySelector('#crowd svg')"), "crowded: ")
+        fam = b.eval("[...document.querySelectorAll('#crowd polyline.family-line')].map(l => [l.dataset.family,"
+                     " l.getAttribute('points').split(' ').length, document.querySelectorAll('#crowd .family-legend li').length])")
+        real = b.eval("document.querySelectorAll('#case-view .family-line, #case-view .family-legend').length")
+        check(fam == [["fxaa", 2, 1]] and real == 0, "verdict.families draws a line per family through its presets, "
+              "with a legend entry; a verdict without families draws none: %s, %s" % (fam, real))
+
+        # -------------------------------------------------------------------------- fits at 1280 px
+        fit = b.eval("""(() => {
+            const out = [];
+            for (const c of document.querySelectorAll('svg.chart, svg.trend-chart, table.matrix, #case-table')) {
+              const card = c.closest('.card, .matrix-wrap, .table-wrap, section');
+              const r = c.getBoundingClientRect(), p = card.getBoundingClientRect();
+              if (r.right > p.right + 0.5 || r.left < p.left - 0.5) out.push([c.id || c.getAttribute('class'), r.right, p.right]);
+            }
+            return {out, page: document.documentElement.scrollWidth};
+        })()""")
+        check(not fit["out"] and fit["page"] <= WIDTH, "every chart and table fits its card at %d px (page %s px): %s"
+              % (WIDTH, fit["page"], fit["out"][:3]))
+
+        # ------------------------------------------------------------------- trends: legends, markers
+        b.eval("(() => { const m = document.getElementById('trend-metric'); m.value = 'memory';"
+               " m.dispatchEvent(new Event('change')); })()")
+        check(b.wait_for("[...document.querySelectorAll('.trend-chart')].every(s => s.dataset.metric === 'memory')", 20),
+              "the memory trends are drawn")
+        trends = b.eval("""[...document.querySelectorAll('.trend')].map(t => ({
+            case: t.querySelector('svg').dataset.case,
+            series: [...t.querySelectorAll('g.series')].map(g => g.dataset.method),
+            legend: [...t.querySelectorAll('.trend-legend li')].map(l => [l.dataset.method, l.dataset.color, l.dataset.dash, l.dataset.marker]),
+            marks: [...t.querySelectorAll('.gate-mark')].map(m => [m.dataset.job, m.dataset.method, m.dataset.gate])}))""")
+        ok = all(sorted(t["series"]) == sorted(l[0] for l in t["legend"]) and
+                 len({tuple(l[1:]) for l in t["legend"]}) == len(t["legend"]) for t in trends)
+        check(ok and trends and all(len(t["series"]) == 10 for t in trends),
+              "every series has a legend entry, each of its own colour and pattern (10 series per chart)")
+        marks = sorted((t["case"], m[1], m[2]) for t in trends for m in t["marks"] if m[0] == ids[2])
+        want = sorted((t["case"], t["method"], t["gate"]) for t in tripped if t["gate"].startswith("memory"))
+        check(marks == want and want, "the memory trend marks exactly the memory gates aalab compare trips: %s" % marks)
+        check(all(m[0] == ids[2] for t in trends for m in t["marks"]), "and marks no other job")
+        if shots:
+            shoot(b, ".trend", os.path.join(shots, "dashboard-trend-memory.png"))
+    finally:
+        if b:
+            b.close()
+        status = d.stop()
+        check(status == 0, "aalabd exits 0")
+        d.cleanup()
+    finish()
+
+
+GEOMETRY = """(() => {
+    const svg = %s;
+    const box = e => { const r = e.getBBox(); return [r.x, r.y, r.x + r.width, r.y + r.height]; };
+    return {points: [...svg.querySelectorAll('g.point')].map(g => {
+              const m = g.querySelector('circle:not(.front-ring), rect:not(.label-box), path');
+              return {method: g.dataset.method, dot: box(m), label: box(g.querySelector('.label-box')),
+                      text: box(g.querySelector('.point-label')), textContent: g.querySelector('.point-label').textContent};}),
+            leaders: [...svg.querySelectorAll('line.leader')].map(l => [+l.getAttribute('x1'), +l.getAttribute('y1'),
+                      +l.getAttribute('x2'), +l.getAttribute('y2')]),
+            xticks: [...svg.querySelectorAll('.x-tick')].map(t => t.textContent),
+            yticks: [...svg.querySelectorAll('.y-tick')].map(t => t.textContent)};
+})()"""
+
+CROWD = """(() => {
+    const names = ['none', 'ssaa:4', 'msaa:4', 'fxaa', 'smaa', 'taa', 'gbaa', 'asaa', 't2msaa:0.125', 'rsaa:8', 'copy',
+                   'floor', 'fxaa-cs', 'taa-sobel'];
+    const methods = names.map((label, k) => ({label, gpu_ms: {median: 1.5 + 0.05 * k, p10: 1.4, p90: 1.9},
+                                               metrics: {psnr: {mean: 21 + 0.1 * (k % 5), identical: false}}}));
+    const families = [{family: 'fxaa', methods: ['fxaa', 'fxaa-cs'], front: ['fxaa']}];
+    const fig = costChart({id: 'crowd', doc: {methods, verdict: {front: ['none'], families}}}, {}, null);
+    fig.id = 'crowd';
+    document.body.append(fig);
+    return fig.querySelectorAll('g.point').length;
+})()"""
+
+
+def check_labels(geo, what=""):
+    pts = geo["points"]
+    inter = lambda a, b: a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+    dist = lambda b, x, y: math.hypot(max(b[0] - x, 0, x - b[2]), max(b[1] - y, 0, y - b[3]))
+    centre = lambda b: ((b[0] + b[2]) / 2, (b[1] + b[3]) / 2)
+    over = [(p["method"], q["method"]) for i, p in enumerate(pts) for q in pts[i + 1:] if inter(p["label"], q["label"])]
+    check(not over, what + "no two point labels overlap: %s" % over)
+    covers = [(p["method"], q["method"]) for p in pts for q in pts if inter(p["label"], q["dot"])]
+    check(not covers, what + "no label covers a point: %s" % covers)
+    outside = [p["method"] for p in pts if not (p["text"][0] >= p["label"][0] - 0.5 and p["text"][2] <= p["label"][2] + 0.5)]
+    check(not outside, what + "each label's text fits its box: %s" % outside)
+    check(all(p["textContent"] == p["method"] for p in pts), what + "each label names its method")
+    # tied: the label is nearer its own point than any other's, or a leader line runs from the point to it
+    loose = []
+    for p in pts:
+        px, py = centre(p["dot"])
+        own = dist(p["label"], px, py)
+        nearest = min((dist(p["label"], *centre(q["dot"])) for q in pts if centre(q["dot"]) != (px, py)), default=1e9)
+        led = any(abs(l[0] - px) < 0.5 and abs(l[1] - py) < 0.5 and dist(p["label"], l[2], l[3]) < 0.5 for l in geo["leaders"])
+        if not (own < nearest or led):
+            loose.append(p["method"])
+    check(not loose, what + "each label is tied to its point (nearest, or by a leader line): %s" % loose)
+
+
+def round_ticks(ticks):
+    try:
+        v = [float(t) for t in ticks]
+    except ValueError:
+        return False
+    if len(v) < 3:
+        return False
+    step = v[1] - v[0]
+    e = 10 ** math.floor(math.log10(step) + 1e-9)
+    if not any(abs(step - m * e) < 1e-9 * e for m in (1, 2, 5)):
+        return False
+    return all(abs((v[i + 1] - v[i]) - step) < 1e-6 * step for i in range(len(v) - 1)) and \
+        all(abs(x / step - round(x / step)) < 1e-6 for x in v)
+
+
+def shoot(b, selector, path):
+    r = b.eval("(() => { const r = document.querySelector('%s').getBoundingClientRect();"
+               " return [r.x, r.y + scrollY, r.width, r.height]; })()" % selector)
+    b.screenshot(path, {"x": r[0], "y": r[1], "width": r[2], "height": r[3]})
+
+
+main()
