@@ -314,8 +314,8 @@ static int parse_methods(const json_t *v, const struct aa_file_source *files, st
 	if (n > AA_MAX_METHODS)
 		return bad(err, AA_ERR_LIMIT, "methods", "%zu methods; a job compares at most %d", n, AA_MAX_METHODS);
 
-	/* count: the methods so far, a sweep's configurations each one; item[k]: the job's methods[] item that
-	 * method k came from, for the errors */
+	/* count: the methods so far, each configuration of a sweep one; item_of[k]: the job's methods[] item
+	 * that method k came from, for the errors */
 	int count = 0;
 	size_t item_of[AA_MAX_METHODS];
 	s->method_count = 0;
