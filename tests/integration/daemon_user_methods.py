@@ -13,19 +13,23 @@ import re
 import resource
 import signal
 import sys
+import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from daemon_lib import TOP_SRC, Daemon, check, finish, wait_state, check_log_and_cleanup, crashed
 
 EXAMPLES = os.path.join(TOP_SRC, "examples", "methods")
-LIMIT = 8  # seconds: far more than a small job takes, sanitizers and validation included
+LIMIT = 8  # seconds: the time limit the hung job meets
+LONG_LIMIT = 600  # seconds: every other job's time limit, beyond anything the test waits for
+GRACE = 5  # seconds a cancelled job has to reach its next event before its process is killed (aalabd(8))
 HANG_SIZE = "320x180"
 SMALL = {"scene": "thin-wires", "size": "64x36", "frames": 1, "reference": {"samples": 4}}
 
 # lavapipe ends any shader's loops after 65535 iterations in all (its loop limiter); this loop never meets
-# its exit and does 512 dependent fetches an iteration. Measured with aalab run at 160x90 and 256 fetches:
-# 7.5 to 29 s a frame on this shared machine, too close to LIMIT; HANG_SIZE and 512 make it 8 times that
+# its exit and does 4096 dependent fetches an iteration. Measured with aalab run at 160x90 and 256 fetches:
+# 7.5 to 29 s a frame; HANG_SIZE and 4096 make it 64 times that, so that no machine finishes the frame
+# within anything the test waits for (LIMIT plus the cancel grace): every case below ends by a kill
 HANG = {
     "hang.json": json.dumps({"name": "hang", "passes": [{"name": "spin", "shader": "hang.frag", "reads": ["colour"]}]}),
     "hang.frag": """void main()
@@ -34,7 +38,7 @@ HANG = {
 	uint stop = floatBitsToUint(c.a) | 1u;
 	vec4 acc = c;
 	for (uint i = 0u; i != stop; i += 2u)
-		for (int k = 0; k < 512; k++)
+		for (int k = 0; k < 4096; k++)
 			acc += texelFetch(colour, ivec2(abs(acc.xy * 7.0 + float(k))) % ivec2(aa_size.xy), 0);
 	aa_write(acc);
 }
@@ -61,6 +65,30 @@ def submit(c, job, files=None):
     if files is None:
         return c.request({"op": "submit", "job": job})
     return c.request({"op": "submit", "job": job, "payload_format": "bundle"}, bundle(files))
+
+
+def set_time_limit(d, config, seconds):
+    """Writes job-time-limit to the configuration file and, with a daemon, reloads it (SIGHUP) and waits
+    until the daemon says so."""
+    with open(config, "w") as f:
+        f.write("job-time-limit = %d\n" % seconds)
+    if d:
+        reloads = d.read_log().count("configuration reloaded")
+        d.proc.send_signal(signal.SIGHUP)
+        deadline = time.time() + 60
+        while d.read_log().count("configuration reloaded") == reloads and time.time() < deadline:
+            time.sleep(0.05)
+
+
+def wait_inside_shader(d, job):
+    """Returns once the job's job_started event is logged: the worker's next step is the warm-up frame of
+    its one method, the hung shader, and no event or cancel check comes before that frame ends."""
+    w = d.connect()
+    r = w.request({"op": "watch", "job": job, "frames": "none"})
+    assert r.get("ok"), r
+    while w.read().get("event") != "job_started":
+        pass
+    w.close()
 
 
 def worker_pids(d):
@@ -104,8 +132,15 @@ try:
     check_log_and_cleanup(d)
 
     # ---------------------------------------------------------------- allowed: a worker process
-    d = Daemon("--allow-user-methods", "yes", "--job-time-limit", str(LIMIT), "--drain-timeout", "1",
+    # job-time-limit is LIMIT only for the job that must hit it (set by a reload, read when a job starts):
+    # every other job here runs under a limit far beyond what any waits for, so that neither a slow job
+    # on a busy machine nor a cancel's grace ever races it
+    tmp = tempfile.mkdtemp(prefix="aalabd-test.")
+    config = os.path.join(tmp, "aalabd.conf")
+    set_time_limit(None, config, LONG_LIMIT)
+    d = Daemon("--allow-user-methods", "yes", "--config", config, "--drain-timeout", "1", tmp=tmp,
                env={"AALAB_CACHE_DIR": "/nonexistent-cache-dir"})
+    d.own_tmp = True
     check("user methods allowed: GPU work in a worker process" in d.read_log(), "ready says where GPU work runs")
     first_pid = worker_pids(d)[0]
     c = d.connect()
@@ -155,7 +190,7 @@ try:
     s2 = wait_state(c, r["job"], ["done", "failed"]) if r["ok"] else {}
     v = s2.get("compare", {})
     check(s2.get("state") == "done" and v.get("job") == s1["id"] and v.get("verdict") in ("held", "tripped"),
-          "run again with it as the baseline, the job has a verdict: %s" % v)
+          "run again with it as the baseline, the job has a verdict: %s" % (v or r))
     check(len(worker_pids(d)) == 1, "in the one worker process")
 
     # the daemon reads user methods from the files sent, never from its disk
@@ -188,11 +223,12 @@ try:
     done_before = r_first
 
     # a shader that does not end: its job fails at the time limit; the next jobs run on a fresh process
+    set_time_limit(d, config, LIMIT)
     hang = submit(c, dict(SMALL, size=HANG_SIZE, methods=["none", "user:file=hang.json"]), HANG)["job"]
+    wait_inside_shader(d, hang)
+    set_time_limit(d, config, LONG_LIMIT)  # the jobs after it start with this one
     after = submit(c, dict(SMALL, methods=["none", "fxaa"]))["job"]
     user_after = submit(c, dict(SMALL, methods=["user:file=m/edge_blur.json"]), example_files())["job"]
-    wait_state(c, hang, ["running"])
-    time.sleep(1.0)
     t0 = time.time()
     st = c.request({"op": "status", "job": hang})
     check(st["ok"] and st["job"]["state"] == "running" and c.request({"op": "list"})["ok"],
@@ -224,8 +260,7 @@ try:
     # SIGABRT as a failed assertion in Mesa raises it (ASan, in the sanitizer build, would catch a SIGSEGV
     # itself, report it and exit 1)
     crash = submit(c, dict(SMALL, size=HANG_SIZE, methods=["user:file=hang.json"]), HANG)["job"]
-    wait_state(c, crash, ["running"])
-    time.sleep(1.0)
+    wait_inside_shader(d, crash)
     victim = worker_pids(d)[-1]
     os.kill(victim, signal.SIGABRT)
     cj = wait_state(c, crash, ["done", "failed"])
@@ -236,16 +271,14 @@ try:
 
     # a hung job that is cancelled does not wait for its time limit
     stuck = submit(c, dict(SMALL, size=HANG_SIZE, methods=["user:file=hang.json"]), HANG)["job"]
-    deadline = time.time() + 60
-    while c.request({"op": "status", "job": stuck})["job"]["events"] < 1 and time.time() < deadline:
-        time.sleep(0.05)  # job_started: set up, into its first (warm-up) frame, in the shader
-    time.sleep(0.5)
+    wait_inside_shader(d, stuck)
     t0 = time.time()
     check(c.request({"op": "cancel", "job": stuck})["ok"], "cancel a hung job")
     s = wait_state(c, stuck, ["done", "failed", "cancelled"])
     took = time.time() - t0
-    check(s["state"] == "cancelled" and 4 < took < LIMIT, "it is cancelled after the 5 s grace, before its time "
-          "limit (%.1f s)" % took)
+    check(s["state"] == "cancelled" and GRACE - 0.5 < took < LONG_LIMIT / 2, "it is cancelled after the %d s "
+          "grace, long before its time limit (%.1f s): %s" % (GRACE, took, s.get("error")))
+    print("measured: a hung job was cancelled %.2f s after the cancel (grace %d s)" % (took, GRACE))
     check("did not stop when cancelled: worker process killed" in d.read_log(), "its process was killed")
     r = submit(c, dict(SMALL, methods=["none"]))
     check(wait_state(c, r["job"], ["done", "failed"])["state"] == "done", "and the next job succeeds")
@@ -254,8 +287,7 @@ try:
     # hung process is killed after the cancel grace) and the process ends with the daemon
     hung = submit(c, dict(SMALL, size=HANG_SIZE, methods=["user:file=hang.json"]), HANG)["job"]
     queued = submit(c, dict(SMALL, methods=["user:file=m/edge_blur.json"]), example_files())["job"]
-    wait_state(c, hung, ["running"])
-    time.sleep(0.5)
+    wait_inside_shader(d, hung)
     pids = worker_pids(d)
     c.close()
     check(d.stop() == 0, "daemon stops")
