@@ -17,6 +17,7 @@
 #include "gpu/sample_positions.h"
 #include "methods/jitter.h"
 #include "methods/methods.h"
+#include "methods/smaa.h"
 #include "reference/reference.h"
 #include "types/job.h"
 #include "types/method.h"
@@ -77,8 +78,22 @@ static bool method_points(const struct aa_method *m, struct points *s)
 {
 	const char *name = m->name;
 	if (!strcmp(name, "none") || !strcmp(name, "copy") || !strcmp(name, "floor") || !strcmp(name, "fxaa") ||
-	    !strcmp(name, "fxaa-cs") || !strcmp(name, "smaa") || !strcmp(name, "gbaa")) {
+	    !strcmp(name, "fxaa-cs") || !strcmp(name, "gbaa") || !strcmp(name, "cmaa2")) {
 		add(s, 0.5, 0.5); /* one sample at the pixel centre */
+		return true;
+	}
+	if (!strcmp(name, "smaa")) {
+		/* every mode's samples on both frames of its pair, taken either side of the centre (a sample
+		 * offset and a scene jitter move the sampled point in opposite directions) */
+		for (int mode = AA_SMAA_1X; mode <= AA_SMAA_4X; mode++)
+			for (int f = 0; f < 2; f++) {
+				int count;
+				const struct aa_smaa_sample *smp = aa_smaa_frame_samples(mode, f, &count);
+				for (int i = 0; i < count; i++) {
+					add(s, 0.5 + smp[i].offset[0], 0.5 + smp[i].offset[1]);
+					add(s, 0.5 - smp[i].offset[0], 0.5 - smp[i].offset[1]);
+				}
+			}
 		return true;
 	}
 	if (!strcmp(name, "ssaa")) {
