@@ -50,7 +50,7 @@ v = json.load(open(sys.argv[1]))["verdicts"]
 states = {it["method"]: it["verdicts"]["vs_none"]["state"] for it in v["items"]}
 assert v["failed"] >= 1 and states == {"none": "n/a", "fxaa": "pass", "floor": "fail"}, (v["failed"], states)
 PY
-grep -q "verdicts failed that must hold" "$TMP/out" && pass "and prints the verdict table" || fail "no verdict table for a single job"
+grep -Eq "verdicts? failed that must hold" "$TMP/out" && pass "and prints the verdict table" || fail "no verdict table for a single job"
 # tonemapped_resolve: on hdr-fireflies Karis' weights keep a sub-pixel emitter (1e3-1e5) from filling its
 # whole resolve footprint with white, so fewer pixels saturate than with the linear box resolve
 expect_status 0 "ssaa and msaa with and without tonemapped_resolve" -- "$AALAB" run --local --quiet \
