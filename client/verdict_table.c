@@ -5,7 +5,7 @@
 
 #include "client.h"
 
-static const char *const kinds[] = {"finite", "range", "stuck", "drift", "vs_none"};
+static const char *const kinds[] = {"finite", "range", "stuck", "drift", "vs_none", "dip"};
 
 /* "pass", "FAIL", "fail*" (a failure the docs expect) or "-" (not applicable), with the figure judged. */
 static void cell(json_t *v, char *out, size_t size)
@@ -37,9 +37,10 @@ int aa_print_verdict_table(json_t *results, FILE *out)
 	json_t *t = json_object_get(verdicts, "thresholds");
 	fprintf(out, "\nverdicts (docs/hard-cases.md): finite = NaN/Inf values, range = negative values, stuck = the "
 		"smallest\nchange/reference-change ratio (fail under %.2g), drift = late - early PSNR dB on a static "
-		"path (fail\nunder -%.2g), vs_none = PSNR dB - none's (fail under -%.2g); fail* = an expected "
-		"exception\n\n", json_number_value(json_object_get(t, "stuck_ratio")),
-		json_number_value(json_object_get(t, "drift_db")), json_number_value(json_object_get(t, "vs_none_db")));
+		"path (fail\nunder -%.2g), vs_none = PSNR dB - none's (fail under -%.2g), dip = the worst frame's PSNR dB "
+		"- none's\nin that frame (fail under -%.2g); fail* = an expected exception\n\n",
+		json_number_value(json_object_get(t, "stuck_ratio")), json_number_value(json_object_get(t, "drift_db")),
+		json_number_value(json_object_get(t, "vs_none_db")), json_number_value(json_object_get(t, "dip_db")));
 	fprintf(out, "%-40s %-32s", "case", "method");
 	for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
 		fprintf(out, " %-12s", kinds[k]);

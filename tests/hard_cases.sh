@@ -15,7 +15,7 @@ v = r["verdicts"]
 assert v["failed"] == 0, v["failed"]
 items = v["items"]
 assert len(items) == 2 * 4, len(items)
-kinds = {"finite", "range", "stuck", "drift", "vs_none"}
+kinds = {"finite", "range", "stuck", "drift", "vs_none", "dip"}
 for it in items:
     assert set(it["verdicts"]) == kinds, it
     assert it["verdicts"]["finite"]["state"] == "pass" and it["verdicts"]["range"]["state"] == "pass", it

@@ -7,7 +7,7 @@
 #include "results/verdicts.h"
 #include "run/job_spec.h"
 
-static const char *const names[AA_VERDICT_COUNT] = {"finite", "range", "stuck", "drift", "vs_none"};
+static const char *const names[AA_VERDICT_COUNT] = {"finite", "range", "stuck", "drift", "vs_none", "dip"};
 
 const char *aa_verdict_name(enum aa_verdict_kind k)
 {
@@ -47,6 +47,33 @@ static double psnr_over(const struct aa_method_result *m, int from, int to)
 	if (!n)
 		return NAN;
 	return sum > 0 ? aa_psnr_from_mse(sum / n, 255.0) : INFINITY;
+}
+
+/* PSNR of frame f; +inf when identical, NAN when not measured. */
+static double frame_psnr(const struct aa_method_result *m, int f)
+{
+	const double mse = m->frames[f].metrics.identical ? 0.0 : m->frames[f].metrics.mse;
+	if (!isfinite(mse))
+		return NAN;
+	return mse > 0 ? aa_psnr_from_mse(mse, 255.0) : INFINITY;
+}
+
+/* The smallest PSNR(m) - PSNR(none) over the frames both measured (matched by frame index); NAN if none.
+ * A frame both render identically to the reference counts as 0. */
+static double worst_frame_vs(const struct aa_method_result *m, const struct aa_method_result *none, int *at)
+{
+	double worst = NAN;
+	for (int f = 0; f < m->frame_count && f < none->frame_count; f++) {
+		const double a = frame_psnr(m, f), b = frame_psnr(none, f);
+		if (isnan(a) || isnan(b) || (isinf(a) && isinf(b)))
+			continue;
+		const double d = isinf(a) ? INFINITY : isinf(b) ? -INFINITY : a - b;
+		if (isnan(worst) || d < worst) {
+			worst = d;
+			*at = m->frames[f].frame;
+		}
+	}
+	return worst;
 }
 
 static int find_none(const struct aa_job_result *c)
@@ -98,6 +125,7 @@ void aa_verdict_judge(const struct aa_job_result *c, int mi, struct aa_verdict *
 									   : AA_VERDICT_PASS;
 	}
 	out->value[AA_VERDICT_VS_NONE] = NAN;
+	out->value[AA_VERDICT_DIP] = NAN;
 	const int none = find_none(c);
 	if (none >= 0 && none != mi) {
 		const double mine = psnr_over(m, 0, n), base = psnr_over(&c->methods[none], 0, c->methods[none].frame_count);
@@ -106,6 +134,13 @@ void aa_verdict_judge(const struct aa_job_result *c, int mi, struct aa_verdict *
 		out->state[AA_VERDICT_VS_NONE] = isnan(d) ? AA_VERDICT_NA
 						 : d < -AA_VERDICT_VS_NONE_DB ? AA_VERDICT_FAIL
 									       : AA_VERDICT_PASS;
+		int at = 0;
+		const double dip = worst_frame_vs(m, &c->methods[none], &at);
+		out->value[AA_VERDICT_DIP] = dip;
+		out->dip_frame = at;
+		out->state[AA_VERDICT_DIP] = isnan(dip) ? AA_VERDICT_NA
+					     : dip < -AA_VERDICT_DIP_DB ? AA_VERDICT_FAIL
+									 : AA_VERDICT_PASS;
 	}
 	for (int k = 0; k < AA_VERDICT_COUNT; k++)
 		if (out->state[k] == AA_VERDICT_FAIL && m->method)
@@ -132,6 +167,8 @@ json_t *aa_verdicts_json(const struct aa_suite_result *r, int *failed)
 									     : json_null());
 				if (v.expected[k])
 					json_object_set_new(one, "expected", json_string(v.expected[k]));
+				if (k == AA_VERDICT_DIP && v.state[k] != AA_VERDICT_NA)
+					json_object_set_new(one, "frame", json_integer(v.dip_frame));
 				if (v.state[k] == AA_VERDICT_FAIL && v.expected[k])
 					expected++;
 				else if (v.state[k] == AA_VERDICT_FAIL)
@@ -144,8 +181,9 @@ json_t *aa_verdicts_json(const struct aa_suite_result *r, int *failed)
 	}
 	if (failed)
 		*failed = unexpected;
-	return json_pack("{s:i, s:i, s:{s:f, s:f, s:f, s:f}, s:o}", "failed", unexpected, "expected_failures",
+	return json_pack("{s:i, s:i, s:{s:f, s:f, s:f, s:f, s:f}, s:o}", "failed", unexpected, "expected_failures",
 			 expected, "thresholds", "stuck_ratio", AA_VERDICT_STUCK_RATIO, "stuck_min_reference_change",
 			 AA_VERDICT_STUCK_MIN_CHANGE, "drift_db", AA_VERDICT_DRIFT_DB, "vs_none_db", AA_VERDICT_VS_NONE_DB,
+			 "dip_db", AA_VERDICT_DIP_DB,
 			 "items", items);
 }

@@ -14,6 +14,8 @@ enum aa_verdict_kind {
 	AA_VERDICT_DRIFT,   /* static path where nothing moves (the reference is reused), >= 16 frames: the last
 			     * quarter's PSNR not below the second quarter's by more than DRIFT_DB */
 	AA_VERDICT_VS_NONE, /* PSNR not below `none`'s by more than VS_NONE_DB */
+	AA_VERDICT_DIP,     /* in no frame is the PSNR below `none`'s in that frame by more than DIP_DB: a short
+			     * drop the case's mean hides (a ghost after a cut or a jump, a firefly held) */
 	AA_VERDICT_COUNT
 };
 enum aa_verdict_state { AA_VERDICT_NA, AA_VERDICT_PASS, AA_VERDICT_FAIL };
@@ -23,11 +25,13 @@ enum aa_verdict_state { AA_VERDICT_NA, AA_VERDICT_PASS, AA_VERDICT_FAIL };
 #define AA_VERDICT_DRIFT_DB 0.5
 #define AA_VERDICT_DRIFT_MIN_FRAMES 16
 #define AA_VERDICT_VS_NONE_DB 1.0
+#define AA_VERDICT_DIP_DB 1.5
 
 struct aa_verdict {
 	enum aa_verdict_state state[AA_VERDICT_COUNT];
 	double value[AA_VERDICT_COUNT];   /* the figure judged (count, ratio or dB) */
 	const char *expected[AA_VERDICT_COUNT]; /* a failure docs/hard-cases.md expects: its reason */
+	int dip_frame;                    /* the frame (index on the path) of value[AA_VERDICT_DIP] */
 };
 
 const char *aa_verdict_name(enum aa_verdict_kind k);

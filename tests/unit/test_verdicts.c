@@ -149,6 +149,44 @@ static void test_vs_none_and_exceptions(void **state)
 	free(r);
 }
 
+/* One bad frame among good ones: the case's mean holds, dip does not. */
+static void test_dip(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = make_case("moire", "default", false, &fake_taa, 31.0);
+	r->methods[1].frames[12].frame = 40;
+	r->methods[1].frames[12].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.7); /* 27 dB: 3 dB under none */
+	struct aa_verdict v;
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_VS_NONE], AA_VERDICT_PASS);
+	assert_int_equal(v.state[AA_VERDICT_DIP], AA_VERDICT_FAIL);
+	assert_true(fabs(v.value[AA_VERDICT_DIP] + 3.0) < 1e-9);
+	assert_int_equal(v.dip_frame, 40);
+	assert_null(v.expected[AA_VERDICT_DIP]);
+	/* 1.4 dB under none in that frame: within the margin */
+	r->methods[1].frames[12].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.86);
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_DIP], AA_VERDICT_PASS);
+	assert_true(fabs(v.value[AA_VERDICT_DIP] + 1.4) < 1e-9);
+	/* none's frame worse in the same frame: judged frame by frame, not against none's mean */
+	r->methods[1].frames[12].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.7);
+	r->methods[0].frames[12].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.6);
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_DIP], AA_VERDICT_PASS);
+	aa_verdict_judge(r, 0, &v); /* none is not judged against itself */
+	assert_int_equal(v.state[AA_VERDICT_DIP], AA_VERDICT_NA);
+	aa_job_result_free(r);
+	free(r);
+	/* the ghosts docs/hard-cases.md expects of asaa on fast-ball */
+	r = make_case("fast-ball", "cut-swing", false, &fake_asaa, 31.0);
+	r->methods[1].frames[5].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.7);
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_DIP], AA_VERDICT_FAIL);
+	assert_non_null(v.expected[AA_VERDICT_DIP]);
+	aa_job_result_free(r);
+	free(r);
+}
+
 static void test_json_counts(void **state)
 {
 	(void)state;
@@ -186,6 +224,7 @@ int main(void)
 		cmocka_unit_test(test_stuck),
 		cmocka_unit_test(test_drift),
 		cmocka_unit_test(test_vs_none_and_exceptions),
+		cmocka_unit_test(test_dip),
 		cmocka_unit_test(test_json_counts),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
