@@ -1,8 +1,8 @@
 /* Alpha-tested geometry follows one rule per method family (docs/methods.md): MSAA-style methods
  * (msaa on both paths, rsaa, t2msaa, gbaa) test alpha once per pixel and triangle, so on a cut-out quad
  * that covers the whole image their output is none's except along the quad's diagonal, where two
- * triangles share pixels; supersampling (ssaa) tests each sample and alpha to coverage spreads alpha over
- * the samples, so both differ from none along every alpha edge. Then the two msaa:4 paths score alike
+ * triangles share pixels; supersampling (ssaa) and alpha to coverage test each sample, so both differ from
+ * none along every alpha edge; every rule cuts where glTF's cutoff says. Then the two msaa:4 paths score alike
  * on cutout-fence with either alpha rule, and each method reports the rule it ran with. */
 #include <math.h>
 #include <setjmp.h>
@@ -146,9 +146,10 @@ static void test_once_per_pixel_on_a_cutout_quad(void **state)
 /* glTF MASK is a hard cut at alphaCutoff, with or without alpha to coverage (docs/methods.md): on a quad over
  * the whole image whose alpha rises linearly from 0 at one edge to 1 at the other, every method keeps
  * (1 - cutoff) of the rows at cutoffs 0.25, 0.5 and 0.75 (within 1.5 rows), and at most two partly kept
- * rows per column (the cut's own anti-aliased edge, which may straddle a row boundary). Keeping round(alpha N) samples turned the panel into a ramp: about half the
- * rows kept whatever the cutoff, every row partly. The ramp is read magnified (64 texels, mip 0) and
- * minified (512 texels, mip 2, alpha-weighted mips). */
+ * rows per column (the cut's own anti-aliased edge, which may straddle a row boundary). Keeping
+ * round(alpha N) samples turned the panel into a ramp: about half the rows kept whatever the cutoff,
+ * every row partly. The ramp is read magnified (64 texels, mip 0) and minified (512 texels, mip 2,
+ * alpha-weighted mips). */
 #define PANEL 128
 #define PANEL_METHODS 7
 static void test_mask_cuts_at_the_cutoff(void **state)
