@@ -381,6 +381,32 @@ def test_alpha_modes(path):
     g.write(path)
 
 
+def opaque_alpha_texels(x, y):
+    """1024x1024: the left half green with alpha 0; the right half alternating columns, red with alpha 0 and
+    blue with alpha 1. Minified, glTF OPAQUE averages them to green and red-blue, BLEND (alpha as coverage)
+    to nothing and half-covering blue."""
+    if x < 512:
+        return (40, 200, 40, 0)
+    return (200, 40, 40, 0) if x % 2 == 0 else (40, 40, 200, 255)
+
+
+def test_opaque_alpha(path):
+    """One texture with alpha 0 in many texels, shared by an OPAQUE material (left, alpha ignored) and a
+    BLEND one (right), both unlit; 1024 texels over a unit quad, so that every method and the reference read
+    mips of 4 texels or more (straight-alpha bilinear filtering of level 0 would bleed red into the blend)."""
+    g = Gltf()
+    tex = g.texture(g.image(1024, 1024, 4, opaque_alpha_texels))
+    unlit = {"KHR_materials_unlit": {}}
+    opaque = g.material(name="opaque", pbrMetallicRoughness={"baseColorTexture": {"index": tex}},
+                        extensions=unlit)
+    blend = g.material(name="blend", alphaMode="BLEND", pbrMetallicRoughness={"baseColorTexture": {"index": tex}},
+                       extensions=unlit)
+    g.doc["extensionsUsed"] = ["KHR_materials_unlit"]
+    g.mesh_node([quad(g, material=opaque)], "opaque", (-0.6, 0, 0))
+    g.mesh_node([quad(g, material=blend)], "blend", (0.6, 0, 0))
+    g.write(path)
+
+
 def test_blend_order(path):
     """Two BLEND quads that overlap: a green one in front (z = 0.2), listed first, and a red one behind. Drawn
     in file order the green one would be under the red one; sorted back to front it is over it."""
@@ -591,6 +617,7 @@ def write_test_assets():
     test_normal_map("normal-map.gltf")
     test_alpha_modes("alpha-modes.gltf")
     test_blend_order("blend-order.gltf")
+    test_opaque_alpha("opaque-alpha.gltf")
     test_double_sided("double-sided.gltf")
     test_texture_transform("texture-transform.gltf")
     test_metallic_roughness("metallic-roughness.gltf")

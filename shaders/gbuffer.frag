@@ -57,8 +57,8 @@ void main()
 	if (ALPHA_TEST) {
 		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
 			discard;
-		// G-buffer targets are single-sample: a virtual sample keeps or drops itself
-		if (ALPHA_TO_COVERAGE && (alpha_coverage(base.a) & (1u << max(sp.own_sample, 0))) == 0u)
+		// G-buffer targets are single-sample: a virtual sample keeps or drops itself, by alpha where it lies
+		if (ALPHA_TO_COVERAGE && surface_color_vertex(m, in_uv, uv_dx, uv_dy, in_color).a < m.shading.z)
 			discard;
 	}
 	Surface s = Surface(world, shadow, normal, tangent, uv, uv_dx, uv_dy, gl_FrontFacing);

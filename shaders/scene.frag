@@ -44,9 +44,18 @@ void main()
 	if (ALPHA_TEST) {
 		if (!ALPHA_TO_COVERAGE && base.a < m.shading.z)
 			discard;
-		if (ALPHA_TO_COVERAGE) {
-			uint kept = alpha_coverage(base.a);
-			if (SHADING_POINT_MODE == SHADING_POINT_VIRTUAL && (kept & (1u << sp.own_sample)) == 0u)
+		if (ALPHA_TO_COVERAGE && SHADING_POINT_MODE != SHADING_POINT_HARDWARE &&
+		    surface_color_vertex(m, in_uv, uv_dx, uv_dy, in_color).a < m.shading.z)
+			discard; // this rasterisation is its own sample: alpha where it lies
+		if (ALPHA_TO_COVERAGE && SHADING_POINT_MODE == SHADING_POINT_HARDWARE) {
+			uint kept = 0u; // alpha read at each sample, at the pixel's mip level (its gradients)
+			for (int i = 0; i < PATTERN_SAMPLES; i++) {
+				vec2 d = hardware_sample_offset(i);
+				vec4 color_i = MATERIAL_VERTEX_COLOR ? at_shading_point(in_color, d) : in_color;
+				if (surface_color_vertex(m, at_shading_point(in_uv, d), uv_dx, uv_dy, color_i).a >= m.shading.z)
+					kept |= 1u << i;
+			}
+			if (kept == 0u)
 				discard;
 			gl_SampleMask[0] = int(kept);
 		}

@@ -119,9 +119,11 @@ void uv_gradients_at(vec2 uv, vec2 offset, out vec2 uv_dx, out vec2 uv_dy)
 	uv_dy = (uq_y * q_at - uq_at * q_y) / (q_at * q_at);
 }
 
-// Alpha to coverage, the same on both paths: the first round(alpha * N) samples of the pattern survive.
-uint alpha_coverage(float alpha)
+// Alpha to coverage keeps the glTF cut (docs/methods.md, "Alpha to coverage"): a sample survives iff the
+// surface's alpha at that sample reaches the cutoff, while colour is still shaded once. A hardware
+// fragment is interpolated at the pixel centre, so sample i lies this many pixels from it; a virtual
+// rasterisation (and a one-sample fragment) already lies on its own sample.
+vec2 hardware_sample_offset(int i)
 {
-	int kept = int(clamp(alpha, 0.0, 1.0) * float(PATTERN_SAMPLES) + 0.5);
-	return kept >= 32 ? ~0u : (1u << kept) - 1u;
+	return pattern_position(i) - vec2(0.5);
 }

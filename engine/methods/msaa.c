@@ -23,8 +23,8 @@ static const struct aa_param_def msaa_params[] = {
 	{.name = "path", .type = AA_PARAM_ENUM, .def = PATH_AUTO, .min = 0, .max = 2, .choices = msaa_paths,
 	 .help = "auto: hardware when the device supports the count, else virtual samples"},
 	{.name = "alpha_to_coverage", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
-	 .help = "cut-out materials: alpha sets how many of the N samples a fragment covers, instead of one "
-		 "alpha test per pixel"},
+	 .help = "cut-out materials: each of the N samples is kept iff alpha at that sample reaches the cutoff "
+		 "(colour still shaded once), instead of one alpha test per pixel"},
 	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
 	 .help = "resolve the samples with Karis' weights 1/(1+luma) (a tone-mapped average) in a pass of its own "
 		 "instead of the render pass's box resolve (hardware path only)"},

@@ -33,8 +33,8 @@ static const struct aa_param_def rsaa_params[] = {
 	{.name = "auth", .type = AA_PARAM_INT, .def = 1, .min = 0, .max = 2,
 	 .help = "authentication of offsets: 0 off, 1 post-process (halve), 2 pre-pass (reclassify)"},
 	{.name = "alpha_to_coverage", .type = AA_PARAM_BOOL, .def = 0, .min = 0, .max = 1,
-	 .help = "cut-out materials: alpha sets how many geometric subsamples a fragment covers, instead of one "
-		 "alpha test per pixel"},
+	 .help = "cut-out materials: each geometric subsample is kept iff alpha where it lies reaches the "
+		 "cutoff, instead of one alpha test per pixel"},
 };
 
 /* push constants of rsaa_prepass.comp / rsaa_resolve.comp */

@@ -89,8 +89,8 @@ struct aa_scene_target_desc {
 				     * hardware MSAA does; the target must be frame-sized */
 	bool geometry_at_sample;    /* virtual G-buffer samples: position, normal and velocity stay at the
 				     * sample (RSAA's subsamples); only colour and alpha use the shading point */
-	bool alpha_to_coverage;     /* MSAA targets (samples > 1 or virtual): cut-out alpha sets how many samples
-				     * a fragment covers (the first round(alpha N)) instead of the cutoff test */
+	bool alpha_to_coverage;     /* MSAA targets (samples > 1 or virtual): cut-out alpha is tested against the
+				     * cutoff at each sample instead of once at the shading point */
 	float texture_lod_bias;     /* added to every texture fetch's mip level (the reference: finer) */
 	bool constant_colour;       /* the `floor` benchmark: the same geometry and depth test, no shading */
 };

@@ -78,6 +78,8 @@ struct aa_texture {
 	uint8_t **mips; /* mip_levels pointers, each w_i*h_i*4 bytes */
 	bool linear;      /* data, not colour (normal, metallic-roughness and occlusion maps): stored and
 			   * filtered as is, not sRGB-decoded */
+	bool coverage;    /* alpha is coverage (the base colour of a cut-out or blended material): mips weight
+			   * colour by alpha; otherwise alpha takes no part in the colour's mips (glTF OPAQUE) */
 };
 
 enum aa_pattern {

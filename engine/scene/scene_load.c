@@ -651,6 +651,9 @@ static int load_root(struct loader *L, const json_t *root, const char *default_n
 	if (load_textures(L) || load_materials(L) || load_objects(L, json_object_get(root, "objects")) ||
 	    load_lights(L, json_object_get(root, "lights")))
 		return -1;
+	struct aa_error e = {0};
+	if (aa_scene_fit_texture_alpha(sc, &e))
+		return sj_fail_key(s, "textures", e.code, "%s", e.message);
 	struct aa_camera cam;
 	const json_t *camera = json_object_get(root, "camera");
 	if (!camera)

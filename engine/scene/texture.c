@@ -1,5 +1,6 @@
 /* Scene textures: image files (through engine/image) and 5x7-font text, with mips filtered in linear
- * light because the stored bytes are sRGB and averaging sRGB values darkens edges. */
+ * light because the stored bytes are sRGB and averaging sRGB values darkens edges; colour weighted by
+ * alpha only where the material makes alpha coverage (aa_scene_fit_texture_alpha). */
 #include "scene/texture.h"
 
 #include <math.h>
@@ -115,20 +116,22 @@ static uint8_t encode_unorm(float v)
 int aa_texture_from_rgba8(struct aa_texture *out, const uint8_t *pixels, int width, int height,
 			  struct aa_error *err)
 {
-	return aa_texture_from_rgba8_data(out, pixels, width, height, false, err);
+	return aa_texture_from_rgba8_as(out, pixels, width, height, AA_TEXELS_COLOR, err);
 }
 
 int aa_texture_from_rgba8_data(struct aa_texture *out, const uint8_t *pixels, int width, int height, bool linear,
 			       struct aa_error *err)
 {
-	if (width < 1 || height < 1 || width > AA_TEXTURE_MAX_SIZE || height > AA_TEXTURE_MAX_SIZE)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "texture is %dx%d; each side must be 1 to %d texels", width,
-				    height, AA_TEXTURE_MAX_SIZE);
-	out->width = width;
-	out->height = height;
-	out->linear = linear;
-	out->mip_levels = aa_texture_mip_count(width, height);
-	out->mips = calloc((size_t)out->mip_levels, sizeof *out->mips);
+	return aa_texture_from_rgba8_as(out, pixels, width, height, linear ? AA_TEXELS_DATA : AA_TEXELS_COLOR, err);
+}
+
+/* Levels 1.. from level 0 (out->mips[0], width, height, linear and coverage set). Colour is averaged in
+ * linear light; weighted by alpha only where alpha is coverage, since weighting colour by an alpha that
+ * means nothing (glTF OPAQUE) turns texels of alpha 0 black, and with them the coarser mips. */
+static int build_mips(struct aa_texture *out, struct aa_error *err)
+{
+	int width = out->width, height = out->height;
+	const uint8_t *pixels = out->mips[0];
 	size_t n0 = (size_t)width * height;
 	float *cur = malloc(n0 * 4 * sizeof(float));
 	float *next = malloc(n0 * 4 * sizeof(float));
@@ -136,35 +139,36 @@ int aa_texture_from_rgba8_data(struct aa_texture *out, const uint8_t *pixels, in
 	int big = width > height ? width : height;
 	struct taps *tx = malloc((size_t)big * sizeof *tx), *ty = malloc((size_t)big * sizeof *ty);
 	int rc = 0;
-	if (!out->mips || !cur || !next || !tmp || !tx || !ty || !(out->mips[0] = malloc(n0 * 4))) {
+	bool linear = out->linear, weighted = out->coverage;
+	if (!cur || !next || !tmp || !tx || !ty) {
 		rc = aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for a %dx%d texture", width, height);
 		goto done;
 	}
-	memcpy(out->mips[0], pixels, n0 * 4);
 	float lut[256];
 	for (int i = 0; i < 256; i++) /* data maps (normals, roughness) are averaged as stored */
 		lut[i] = linear ? (float)i / 255.0f : aa_srgb_to_linear((float)i / 255.0f);
 	for (size_t i = 0; i < n0; i++) {
-		float a = (float)pixels[i * 4 + 3] / 255.0f;
+		float a = (float)pixels[i * 4 + 3] / 255.0f, w = weighted ? a : 1.0f;
 		for (int c = 0; c < 3; c++)
-			cur[i * 4 + c] = lut[pixels[i * 4 + c]] * a;
+			cur[i * 4 + c] = lut[pixels[i * 4 + c]] * w;
 		cur[i * 4 + 3] = a;
 	}
 	int w = width, h = height;
 	for (int level = 1; level < out->mip_levels; level++) {
 		int nw = level_dim(width, level), nh = level_dim(height, level);
 		downsample(cur, w, h, next, nw, nh, tmp, tx, ty);
-		uint8_t *dst = malloc((size_t)nw * nh * 4);
+		free(out->mips[level]);
+		uint8_t *dst = out->mips[level] = malloc((size_t)nw * nh * 4);
 		if (!dst) {
 			rc = aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for texture mips");
 			goto done;
 		}
-		out->mips[level] = dst;
 		for (size_t i = 0; i < (size_t)nw * nh; i++) {
-			float a = next[i * 4 + 3];
-			for (int c = 0; c < 3; c++)
-				dst[i * 4 + c] = linear ? encode_unorm(a > 1e-6f ? next[i * 4 + c] / a : 0.0f)
-						       : encode_srgb(a > 1e-6f ? next[i * 4 + c] / a : 0.0f);
+			float a = next[i * 4 + 3], wsum = weighted ? a : 1.0f;
+			for (int c = 0; c < 3; c++) {
+				float v = wsum > 1e-6f ? next[i * 4 + c] / wsum : 0.0f;
+				dst[i * 4 + c] = linear ? encode_unorm(v) : encode_srgb(v);
+			}
 			dst[i * 4 + 3] = encode_unorm(a);
 		}
 		float *t = cur;
@@ -178,8 +182,132 @@ done:
 	free(tmp);
 	free(tx);
 	free(ty);
+	return rc;
+}
+
+int aa_texture_from_rgba8_as(struct aa_texture *out, const uint8_t *pixels, int width, int height,
+			     enum aa_texels kind, struct aa_error *err)
+{
+	if (width < 1 || height < 1 || width > AA_TEXTURE_MAX_SIZE || height > AA_TEXTURE_MAX_SIZE)
+		return aa_error_set(err, AA_ERR_LIMIT, "", "texture is %dx%d; each side must be 1 to %d texels", width,
+				    height, AA_TEXTURE_MAX_SIZE);
+	out->width = width;
+	out->height = height;
+	out->linear = kind == AA_TEXELS_DATA;
+	out->coverage = kind == AA_TEXELS_COVERAGE;
+	out->mip_levels = aa_texture_mip_count(width, height);
+	out->mips = calloc((size_t)out->mip_levels, sizeof *out->mips);
+	size_t n0 = (size_t)width * height;
+	int rc = 0;
+	if (!out->mips || !(out->mips[0] = malloc(n0 * 4)))
+		rc = aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for a %dx%d texture", width, height);
+	else {
+		memcpy(out->mips[0], pixels, n0 * 4);
+		rc = build_mips(out, err);
+	}
 	if (rc)
 		aa_texture_free(out);
+	return rc;
+}
+
+int aa_texture_rebuild(struct aa_texture *tex, bool coverage, struct aa_error *err)
+{
+	if (tex->coverage == coverage)
+		return 0;
+	tex->coverage = coverage;
+	return build_mips(tex, err);
+}
+
+int aa_texture_copy(struct aa_texture *dst, const struct aa_texture *src, struct aa_error *err)
+{
+	*dst = *src;
+	dst->mips = calloc((size_t)src->mip_levels, sizeof *dst->mips);
+	for (int i = 0; dst->mips && i < src->mip_levels; i++) {
+		size_t bytes = (size_t)level_dim(src->width, i) * (size_t)level_dim(src->height, i) * 4;
+		if (!(dst->mips[i] = malloc(bytes))) {
+			aa_texture_free(dst);
+			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for a copy of a texture");
+		}
+		memcpy(dst->mips[i], src->mips[i], bytes);
+	}
+	if (!dst->mips) {
+		dst->mip_levels = 0;
+		return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory for a copy of a texture");
+	}
+	return 0;
+}
+
+/* glTF: alpha is coverage in the base colour of MASK and BLEND materials only; OPAQUE ignores it, and
+ * emissive maps have none. A texture used both ways gets a second copy for the cut-out or blended side. */
+int aa_scene_fit_texture_alpha(struct aa_scene *sc, struct aa_error *err)
+{
+	int n = sc->texture_count;
+	if (n == 0)
+		return 0;
+	bool *as_coverage = calloc((size_t)n, sizeof *as_coverage), *as_color = calloc((size_t)n, sizeof *as_color);
+	int *copy = malloc((size_t)n * sizeof *copy);
+	int rc = 0;
+	if (!as_coverage || !as_color || !copy) {
+		rc = aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		goto done;
+	}
+	for (int i = 0; i < sc->material_count; i++) {
+		const struct aa_material *m = &sc->materials[i];
+		bool cut = m->alpha_cutout || m->blend;
+		int base = m->texture_index;
+		if (base >= 0 && base < n && m->pattern == AA_PATTERN_TEXTURE)
+			(cut ? as_coverage : as_color)[base] = true;
+		int emissive = m->maps[AA_MAP_EMISSIVE];
+		if (emissive >= 0 && emissive < n)
+			as_color[emissive] = true;
+	}
+	size_t bytes = 0;
+	for (int t = 0; t < n; t++)
+		bytes += aa_texture_bytes(sc->textures[t].width, sc->textures[t].height);
+	for (int t = 0; t < n; t++) {
+		copy[t] = t;
+		struct aa_texture *tex = &sc->textures[t];
+		if (tex->linear || !as_coverage[t])
+			continue;
+		if (!as_color[t]) {
+			if ((rc = aa_texture_rebuild(tex, true, err)))
+				goto done;
+			continue;
+		}
+		size_t more = aa_texture_bytes(tex->width, tex->height);
+		if (sc->texture_count >= AA_SCENE_MAX_ALL_TEXTURES || bytes + more > AA_SCENE_MAX_TEXTURE_BYTES) {
+			rc = aa_error_set(err, AA_ERR_LIMIT, "", "texture '%s' is used with alpha as coverage (a cut-out or "
+					  "blended base colour) and without (opaque, emissive): its second copy would exceed "
+					  "the scene's limits of %d textures and %u bytes", tex->source,
+					  AA_SCENE_MAX_ALL_TEXTURES, (unsigned)AA_SCENE_MAX_TEXTURE_BYTES);
+			goto done;
+		}
+		struct aa_texture *grown = realloc(sc->textures, (size_t)(sc->texture_count + 1) * sizeof *grown);
+		if (!grown) {
+			rc = aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+			goto done;
+		}
+		sc->textures = grown;
+		struct aa_texture *dup = &sc->textures[sc->texture_count];
+		if ((rc = aa_texture_copy(dup, &sc->textures[t], err)) || (rc = aa_texture_rebuild(dup, true, err)))
+			goto done;
+		snprintf(dup->name, sizeof dup->name, "%.50s/cut", sc->textures[t].name);
+		copy[t] = sc->texture_count++;
+		bytes += more;
+	}
+	for (int i = 0; i < sc->material_count; i++) {
+		struct aa_material *m = &sc->materials[i];
+		int base = m->texture_index;
+		if ((m->alpha_cutout || m->blend) && base >= 0 && base < n) {
+			m->texture_index = copy[base];
+			if (m->maps[AA_MAP_BASE] == base)
+				m->maps[AA_MAP_BASE] = copy[base];
+		}
+	}
+done:
+	free(as_coverage);
+	free(as_color);
+	free(copy);
 	return rc;
 }
 

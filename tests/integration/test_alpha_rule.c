@@ -1,8 +1,8 @@
 /* Alpha-tested geometry follows one rule per method family (docs/methods.md): MSAA-style methods
  * (msaa on both paths, rsaa, t2msaa, gbaa) test alpha once per pixel and triangle, so on a cut-out quad
  * that covers the whole image their output is none's except along the quad's diagonal, where two
- * triangles share pixels; supersampling (ssaa) tests each sample and alpha to coverage spreads alpha over
- * the samples, so both differ from none along every alpha edge. Then the two msaa:4 paths score alike
+ * triangles share pixels; supersampling (ssaa) and alpha to coverage test each sample, so both differ from
+ * none along every alpha edge; every rule cuts where glTF's cutoff says. Then the two msaa:4 paths score alike
  * on cutout-fence with either alpha rule, and each method reports the rule it ran with. */
 #include <math.h>
 #include <setjmp.h>
@@ -57,7 +57,7 @@ static struct aa_scene *cutout_quad(void)
 	uint8_t px[TEXELS * TEXELS * 4];
 	cutout_texels(px);
 	assert_non_null(scene->textures = calloc(1, sizeof *scene->textures));
-	assert_int_equal(aa_texture_from_rgba8(&scene->textures[0], px, TEXELS, TEXELS, &err), 0);
+	assert_int_equal(aa_texture_from_rgba8_as(&scene->textures[0], px, TEXELS, TEXELS, AA_TEXELS_COVERAGE, &err), 0);
 	scene->texture_count = 1;
 	struct aa_material *m = &scene->materials[0];
 	m->pattern = AA_PATTERN_TEXTURE;
@@ -143,61 +143,86 @@ static void test_once_per_pixel_on_a_cutout_quad(void **state)
 	aa_scene_free(scene);
 }
 
-/* Alpha to coverage keeps the first round(alpha * N) samples of the pattern (docs/methods.md): a quad of
- * uniform alpha 179/255 = 0.702 over the whole image keeps 3 of 4 samples and 6 of 8 (0.75 of the quad's
- * colour, the rest background) in every pixel off the diagonal, on both paths; none shows the quad whole. */
-static void test_alpha_to_coverage_rounds(void **state)
+/* glTF MASK is a hard cut at alphaCutoff, with or without alpha to coverage (docs/methods.md): on a quad over
+ * the whole image whose alpha rises linearly from 0 at one edge to 1 at the other, every method keeps
+ * (1 - cutoff) of the rows at cutoffs 0.25, 0.5 and 0.75 (within 1.5 rows), and at most two partly kept
+ * rows per column (the cut's own anti-aliased edge, which may straddle a row boundary). Keeping
+ * round(alpha N) samples turned the panel into a ramp: about half the rows kept whatever the cutoff,
+ * every row partly. The ramp is read magnified (64 texels, mip 0) and minified (512 texels, mip 2,
+ * alpha-weighted mips). */
+#define PANEL 128
+#define PANEL_METHODS 7
+static void test_mask_cuts_at_the_cutoff(void **state)
 {
 	(void)state;
-	enum { S = 32 };
-	static const char *const list[] = {"none", "msaa:4,path=hardware,alpha_to_coverage=true",
-					   "msaa:4,path=virtual,alpha_to_coverage=true", "msaa:8,alpha_to_coverage=true"};
-	const double expected[] = {1.0, 0.75, 0.75, 0.75};
-	struct aa_polygon2d quad = {4, {{0, 0}, {S, 0}, {S, S}, {0, S}}};
-	struct aa_scene *scene;
-	struct aa_error err = {0};
-	float fg[3] = {1, 1, 1}, bg[3] = {0.1f, 0.2f, 0.4f};
-	assert_int_equal(aa_scene_from_polygons(&quad, 1, S, S, fg, bg, &scene, &err), 0);
-	uint8_t px[4 * 4 * 4];
-	for (int i = 0; i < 16; i++) {
-		px[i * 4] = 250;
-		px[i * 4 + 1] = 40;
-		px[i * 4 + 2] = 20;
-		px[i * 4 + 3] = 179;
-	}
-	assert_non_null(scene->textures = calloc(1, sizeof *scene->textures));
-	assert_int_equal(aa_texture_from_rgba8(&scene->textures[0], px, 4, 4, &err), 0);
-	scene->texture_count = 1;
-	struct aa_material *m = &scene->materials[0];
-	m->pattern = AA_PATTERN_TEXTURE;
-	m->texture_index = 0;
-	m->alpha_cutout = true;
-	m->alpha_cutoff = 0.5f;
-	struct aa_job_spec spec;
-	fixture_spec(&spec, NULL, list, 4, S, S, 1, 2);
-	struct capture c;
-	for (int k = 0; k < 4; k++)
-		assert_non_null(c.images[k] = calloc(S * S * 3, sizeof(float)));
-	struct aa_job_result *r = fixture_run(&spec, scene, capture_small, &c);
-	for (int k = 0; k < 4; k++) {
-		double worst = 0.0;
-		for (int y = 0; y < S; y++)
-			for (int x = 0; x < S; x++) {
-				if (abs(x - y) <= 1)
-					continue;
-				const float *p = &c.images[k][(y * S + x) * 3];
-				double share = (p[0] - bg[0]) / (c.images[0][(y * S + x) * 3] - bg[0]);
-				worst = fmax(worst, fabs(share - expected[k]));
+	static const char *const list[PANEL_METHODS] = {
+		"none", "ssaa:4", "msaa:4", "msaa:4,path=hardware,alpha_to_coverage=true",
+		"msaa:4,path=virtual,alpha_to_coverage=true", "msaa:8,alpha_to_coverage=true",
+		"rsaa:8,alpha_to_coverage=true"};
+	static const int texel_rows[] = {64, 512};
+	static const float cutoffs[] = {0.25f, 0.5f, 0.75f};
+	const float bg[3] = {0.1f, 0.2f, 0.4f};
+	int failures = 0;
+	for (size_t t = 0; t < sizeof texel_rows / sizeof texel_rows[0]; t++)
+		for (size_t k = 0; k < sizeof cutoffs / sizeof cutoffs[0]; k++) {
+			struct aa_polygon2d quad = {4, {{0, 0}, {PANEL, 0}, {PANEL, PANEL}, {0, PANEL}}};
+			struct aa_scene *scene;
+			struct aa_error err = {0};
+			float fg[3] = {1, 1, 1};
+			assert_int_equal(aa_scene_from_polygons(&quad, 1, PANEL, PANEL, fg, bg, &scene, &err), 0);
+			int rows = texel_rows[t];
+			uint8_t *px = malloc((size_t)rows * 4 * 4);
+			assert_non_null(px);
+			for (int y = 0; y < rows; y++)
+				for (int x = 0; x < 4; x++) {
+					uint8_t *p = &px[(y * 4 + x) * 4];
+					p[0] = 250, p[1] = 40, p[2] = 20;
+					p[3] = (uint8_t)lrint(255.0 * (y + 0.5) / rows);
+				}
+			assert_non_null(scene->textures = calloc(1, sizeof *scene->textures));
+			assert_int_equal(aa_texture_from_rgba8_as(&scene->textures[0], px, 4, rows, AA_TEXELS_COVERAGE, &err), 0);
+			free(px);
+			scene->texture_count = 1;
+			struct aa_material *m = &scene->materials[0];
+			m->pattern = AA_PATTERN_TEXTURE;
+			m->texture_index = 0;
+			m->alpha_cutout = true;
+			m->alpha_cutoff = cutoffs[k];
+			struct aa_job_spec spec;
+			fixture_spec(&spec, NULL, list, PANEL_METHODS, PANEL, PANEL, 1, 2);
+			struct capture c;
+			for (int i = 0; i < PANEL_METHODS; i++)
+				assert_non_null(c.images[i] = calloc(PANEL * PANEL * 3, sizeof(float)));
+			struct aa_job_result *r = fixture_run(&spec, scene, capture_small, &c);
+			float full = 0; /* the panel's colour where it is kept whole */
+			for (int i = 0; i < PANEL * PANEL; i++)
+				full = fmaxf(full, c.images[0][i * 3]);
+			double want = PANEL * (1.0 - cutoffs[k]);
+			for (int i = 0; i < PANEL_METHODS; i++) {
+				double kept = 0;
+				int worst_partial = 0;
+				for (int x = 0; x < PANEL; x++) {
+					int partial = 0;
+					for (int y = 0; y < PANEL; y++) {
+						double share = (c.images[i][(y * PANEL + x) * 3] - bg[0]) / (full - bg[0]);
+						kept += share;
+						partial += abs(x - y) > 1 && share > 0.02 && share < 0.98;
+					}
+					worst_partial = partial > worst_partial ? partial : worst_partial;
+				}
+				kept /= PANEL;
+				bool ok = fabs(kept - want) <= 1.5 && worst_partial <= 2;
+				printf("  %3d texel rows, cutoff %.2f: %-44s keeps %6.2f of %d rows (want %.0f), at most %d "
+				       "partly%s\n", rows, cutoffs[k], list[i], kept, PANEL, want, worst_partial, ok ? "" : "  FAIL");
+				failures += !ok;
 			}
-		printf("  uniform alpha 0.702: %-44s quad share off by at most %.4f from %.2f\n", list[k], worst,
-		       expected[k]);
-		if (worst > 0.01)
-			fail_msg("%s: a pixel keeps %.4f off %.2f of the quad", list[k], worst, expected[k]);
-	}
-	for (int k = 0; k < 4; k++)
-		free(c.images[k]);
-	fixture_free(r);
-	aa_scene_free(scene);
+			for (int i = 0; i < PANEL_METHODS; i++)
+				free(c.images[i]);
+			fixture_free(r);
+			aa_scene_free(scene);
+		}
+	if (failures)
+		fail_msg("%d method runs do not cut at the cutoff", failures);
 }
 
 /* The issue's scene: hardware and virtual samples test alpha the same way, with and without alpha to
@@ -246,7 +271,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_once_per_pixel_on_a_cutout_quad),
-		cmocka_unit_test(test_alpha_to_coverage_rounds),
+		cmocka_unit_test(test_mask_cuts_at_the_cutoff),
 		cmocka_unit_test(test_paths_agree_on_cutout_fence),
 		cmocka_unit_test(test_every_method_reports_its_rule),
 	};

@@ -248,6 +248,70 @@ static void test_alpha_modes(void **state)
 	aa_scene_free(sc);
 }
 
+/* The frames of a job at one frame ordinal: the reference's (slot 0) and each method's (slot 1 + index). */
+#define OPAQUE_ALPHA_METHODS 6
+struct job_frames {
+	int frame;
+	struct capture slots[1 + OPAQUE_ALPHA_METHODS];
+};
+
+static int capture_job_frame(const struct aa_event *ev, void *user)
+{
+	struct job_frames *j = user;
+	if ((ev->type != AA_EVENT_REFERENCE_FRAME && ev->type != AA_EVENT_METHOD_FRAME) || ev->frame_ordinal != j->frame)
+		return 0;
+	struct capture *c = &j->slots[ev->type == AA_EVENT_REFERENCE_FRAME ? 0 : 1 + ev->method_index];
+	size_t n = (size_t)ev->linear->width * ev->linear->height * 4;
+	c->linear = malloc(n * sizeof *c->linear);
+	memcpy(c->linear, ev->linear->pixels, n * sizeof *c->linear);
+	return 0;
+}
+
+/* glTF OPAQUE ignores alpha, also in the mip chain: a texture whose texels have alpha 0 (green on the left
+ * half; red of alpha 0 between blue of alpha 1 on the right) keeps its colours at a distance (1024 texels
+ * over 40 pixels: mip 4-5, 2-3 for the reference and ssaa:16) in the reference and in every method, where mips weighted by alpha turned
+ * the left half black and the right half blue. The same texture on a BLEND quad is coverage: nothing on
+ * the left, blue at half coverage on the right (its own copy with alpha-weighted mips). */
+static void test_opaque_alpha(void **state)
+{
+	(void)state;
+	static const char *const methods[OPAQUE_ALPHA_METHODS] = {"none", "fxaa", "smaa", "msaa:4", "ssaa:16", "taa"};
+	struct aa_scene *sc = feature_scene("opaque-alpha.gltf", 0.5f, NULL, NULL);
+	struct aa_job_spec spec;
+	fixture_spec(&spec, "assets", methods, OPAQUE_ALPHA_METHODS, W, H, 4, 16);
+	struct job_frames j = {.frame = 3};
+	struct aa_job_result *r = fixture_run(&spec, sc, capture_job_frame, &j);
+	float green[3] = {srgb(40), srgb(200), srgb(40)};
+	float mix[3] = {(srgb(200) + srgb(40)) / 2, srgb(40), (srgb(40) + srgb(200)) / 2};
+	float back[3] = {BACKDROP}, half_blue[3] = {0.5f * srgb(40) + 0.5f * back[0], 0.5f * srgb(40) + 0.5f * back[1],
+						   0.5f * srgb(200) + 0.5f * back[2]};
+	for (int k = 0; k <= OPAQUE_ALPHA_METHODS; k++) {
+		const struct capture *c = &j.slots[k];
+		const char *name = k ? methods[k - 1] : "reference";
+		assert_non_null(c->linear);
+		const float *p = at(c, -0.85f, 0), *q = at(c, -0.35f, 0), *b = at(c, 0.85f, 0);
+		printf("  %-10s opaque: alpha-0 green (%.3f %.3f %.3f), red|blue (%.3f %.3f %.3f); blend blue (%.3f %.3f "
+		       "%.3f)\n", name, p[0], p[1], p[2], q[0], q[1], q[2], b[0], b[1], b[2]);
+	}
+	for (int k = 0; k <= OPAQUE_ALPHA_METHODS; k++) {
+		const struct capture *c = &j.slots[k];
+		const char *name = k ? methods[k - 1] : "reference";
+		char what[96];
+		snprintf(what, sizeof what, "%s, opaque, green of alpha 0", name);
+		expect_color(c, what, -0.85f, 0, green[0], green[1], green[2], 0.01f);
+		snprintf(what, sizeof what, "%s, opaque, red of alpha 0 between blue", name);
+		expect_color(c, what, -0.35f, 0, mix[0], mix[1], mix[2], 0.02f);
+		snprintf(what, sizeof what, "%s, blend, alpha 0", name);
+		expect_color(c, what, 0.35f, 0, back[0], back[1], back[2], 0.01f);
+		snprintf(what, sizeof what, "%s, blend, blue at half coverage", name);
+		expect_color(c, what, 0.85f, 0, half_blue[0], half_blue[1], half_blue[2], 0.02f);
+	}
+	for (int k = 0; k <= OPAQUE_ALPHA_METHODS; k++)
+		free(j.slots[k].linear);
+	fixture_free(r);
+	aa_scene_free(sc);
+}
+
 /* Blended parts are drawn farthest first: where the green quad (in front, first in the file) overlaps
  * the red one (behind), green goes over red over the backdrop. */
 static void test_blend_order(void **state)
@@ -533,6 +597,7 @@ int main(void)
 		cmocka_unit_test(test_normal_map),
 		cmocka_unit_test(test_alpha_modes),
 		cmocka_unit_test(test_blend_order),
+		cmocka_unit_test(test_opaque_alpha),
 		cmocka_unit_test(test_double_sided),
 		cmocka_unit_test(test_texture_transform),
 		cmocka_unit_test(test_metallic_roughness),

@@ -486,12 +486,25 @@ static void test_textures(void **state)
 	assert_in_range(t.mips[1][0], 187, 189);
 	assert_int_equal(t.mips[1][3], 255);
 	aa_texture_free(&t);
-	/* Colour is weighted by alpha: a transparent texel's colour does not bleed into the mip. */
+	/* Where alpha is coverage, colour is weighted by it: a transparent texel's colour does not bleed into
+	 * the mip. Where it is not (glTF OPAQUE), colour is averaged alone: red and green of alpha 0 give
+	 * sRGB(0.5) of each, not black. Rebuilt either way from level 0. */
 	uint8_t px2[8] = {255, 0, 0, 255, 0, 255, 0, 0};
-	assert_int_equal(aa_texture_from_rgba8(&t, px2, 2, 1, &err), 0);
+	assert_int_equal(aa_texture_from_rgba8_as(&t, px2, 2, 1, AA_TEXELS_COVERAGE, &err), 0);
 	assert_int_equal(t.mips[1][0], 255);
 	assert_int_equal(t.mips[1][1], 0);
 	assert_in_range(t.mips[1][3], 127, 128);
+	assert_int_equal(aa_texture_rebuild(&t, false, &err), 0);
+	assert_in_range(t.mips[1][0], 187, 189);
+	assert_in_range(t.mips[1][1], 187, 189);
+	assert_in_range(t.mips[1][3], 127, 128);
+	aa_texture_free(&t);
+	uint8_t px3[8] = {255, 0, 0, 0, 0, 255, 0, 0};
+	assert_int_equal(aa_texture_from_rgba8(&t, px3, 2, 1, &err), 0);
+	assert_false(t.coverage);
+	assert_in_range(t.mips[1][0], 187, 189);
+	assert_in_range(t.mips[1][1], 187, 189);
+	assert_int_equal(t.mips[1][3], 0);
 	aa_texture_free(&t);
 	/* Odd sizes and the cap. */
 	uint8_t *big = calloc(7 * 5 * 4, 1);
@@ -511,6 +524,34 @@ static void test_textures(void **state)
 	assert_int_equal(sc->textures[0].mip_levels, 9);
 	assert_int_equal(sc->materials[0].pattern, AA_PATTERN_TEXTURE);
 	assert_int_equal(sc->materials[0].texture_index, 0);
+	assert_false(sc->textures[0].coverage);
+	aa_scene_free(sc);
+
+	/* A texture shared by a cut-out and a plain material: the cut-out one gets its own copy with
+	 * alpha-weighted mips; a texture used only by cut-outs is rebuilt in place. */
+	sc = load_ok("{\"textures\": {\"wire\": {\"file\": \"assets/chainlink.png\"}, "
+		     "\"sign\": {\"text\": \"A\", \"background\": [0, 0, 0, 0]}}, "
+		     "\"materials\": {\"plain\": {\"texture\": \"wire\"}, "
+		     "\"cut\": {\"texture\": \"wire\", \"alpha_cutout\": true}, "
+		     "\"letters\": {\"texture\": \"sign\", \"alpha_cutout\": true}}, "
+		     "\"objects\": [{\"mesh\": \"box\", \"material\": \"plain\"}], " CAM "}");
+	assert_int_equal(sc->texture_count, 3);
+	int plain = -1, cut = -1, letters = -1;
+	for (int i = 0; i < sc->material_count; i++) {
+		if (strcmp(sc->materials[i].name, "plain") == 0)
+			plain = sc->materials[i].texture_index;
+		if (strcmp(sc->materials[i].name, "cut") == 0)
+			cut = sc->materials[i].texture_index;
+		if (strcmp(sc->materials[i].name, "letters") == 0)
+			letters = sc->materials[i].texture_index;
+	}
+	assert_true(plain >= 0 && cut >= 0 && letters >= 0 && plain != cut);
+	assert_false(sc->textures[plain].coverage);
+	assert_true(sc->textures[cut].coverage);
+	assert_true(sc->textures[letters].coverage);
+	assert_int_equal(sc->textures[cut].width, sc->textures[plain].width);
+	assert_memory_equal(sc->textures[cut].mips[0], sc->textures[plain].mips[0],
+			    (size_t)sc->textures[plain].width * sc->textures[plain].height * 4);
 	aa_scene_free(sc);
 }
 
