@@ -184,7 +184,7 @@ function costChart(c, ui, highlight) {
   for (const m of methods) {
     const [px, pyy] = at.get(m.label), st = style.get(m.label);
     if (typeof m.gpu_ms.p10 === "number" && typeof m.gpu_ms.p90 === "number" && (!log || m.gpu_ms.p10 > 0))
-      svg.append(s("path", {class: "spread", stroke: st.color,
+      svg.append(s("path", {class: "spread", stroke: st.color, "data-method": m.label,
         d: `M${x.scale(m.gpu_ms.p10)} ${pyy}H${x.scale(m.gpu_ms.p90)}M${x.scale(m.gpu_ms.p10)} ${pyy - 4}v8M${x.scale(m.gpu_ms.p90)} ${pyy - 4}v8`}));
   }
   const labels = placeLabels(methods.map(m => ({x: at.get(m.label)[0], y: at.get(m.label)[1], text: m.label})),

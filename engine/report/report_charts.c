@@ -437,7 +437,11 @@ void aa_report_chart_psnr_per_frame(FILE *o, const struct aa_job_result *r)
 	}
 	fputs("</svg>\n", o);
 	legend(o, r);
-	fputs("</figure>\n", o);
+	fputs("<figcaption>Each line is one method's PSNR against the reference, frame by frame: higher is closer; a "
+	      "dip is a frame the method gets wrong.", o);
+	if (any_identical)
+		fputs(" Identical frames sit in the band at the top.", o);
+	fputs("</figcaption>\n</figure>\n", o);
 }
 
 /* Each method's GPU time split by pass: one bar per method, its passes end to end (the median of each pass

@@ -371,6 +371,17 @@ def page_checks(browser, job, tmp):
     check(not wide and page <= 1280, "at 1280 px nothing overflows its card (page %d px): %s" % (page, wide[:4]))
     top = browser.eval("document.querySelector('.verdict').getBoundingClientRect().top")
     check(top < 900, "the verdict is in the first screen (top at %d px)" % top)
+    bare = browser.eval("[...document.querySelectorAll('table.cost th')].filter(h => !(h.title || '').trim()).map(h => h.textContent)")
+    check(not bare and browser.eval("document.querySelectorAll('table.cost th').length") > 0,
+          "every column head of the cost table explains itself on hover: %s" % bare)
+    uncaptioned = browser.eval("[...document.querySelectorAll('main figure')].filter(f => f.querySelector('svg.chart')).filter(f => !f.querySelector('figcaption')"
+                               " || !f.querySelector('figcaption').textContent.trim()).map(f => f.previousElementSibling && "
+                               "f.previousElementSibling.textContent)")
+    check(not uncaptioned, "every figure says what it shows in a caption: %s" % uncaptioned)
+    terms = browser.eval("[...document.querySelectorAll('dl.glossary dt')].map(d => d.textContent)")
+    want = ["Reference", "Convergence PSNR", "PSNR", "SSIM", "FLIP", "Flicker", "GPU ms", "Front", "Worst regions"]
+    check(all(w in terms for w in want) and browser.eval("!!document.querySelector('a[href=\"#glossary\"]')"),
+          "the glossary, linked from the top, explains %s: %s" % (", ".join(want), terms))
     alone = os.path.join(tmp, "alone")
     os.makedirs(alone)
     shutil.copy(os.path.join(job, "report.html"), alone)
