@@ -342,7 +342,7 @@ def check_cost_axis(b, case, log):
     misplaced = [v for x, v in ticks if not abs(x - px(v)) <= 0.5]
     check(not misplaced and len(ticks) >= 2, what + "cost axis: ticks sit at their values: %s" % misplaced)
     if log:
-        roundish = all(any(abs(v / (mm * 10 ** math.floor(math.log10(v) + 1e-9)) - 1) < 1e-9 for mm in (1, 2, 5)) for _, v in ticks)
+        roundish = all(v > 0 and any(abs(v / (mm * 10 ** math.floor(math.log10(v) + 1e-9)) - 1) < 1e-9 for mm in (1, 2, 5)) for _, v in ticks)
         check(roundish, "log cost axis: ticks are 1, 2 or 5 times a power of ten: %s" % [v for _, v in ticks])
     else:
         check(round_ticks([v for _, v in got["ticks"]]), "cost axis ticks are round and evenly stepped")
