@@ -369,6 +369,10 @@ def page_checks(browser, job, tmp):
         .map(e => e.tagName + '.' + (e.getAttribute('class') || '')))()""")
     page = browser.eval("document.documentElement.scrollWidth")
     check(not wide and page <= 1280, "at 1280 px nothing overflows its card (page %d px): %s" % (page, wide[:4]))
+    cut = browser.eval("""[...document.querySelectorAll('main svg text')].filter(t => {
+        const s = t.closest('svg').getBoundingClientRect(), r = t.getBoundingClientRect();
+        return r.width > 0 && (r.right > s.right + 1 || r.left < s.left - 1); }).map(t => t.textContent.slice(0, 40))""")
+    check(not cut, "no chart text runs past its chart's edge (where it would be cut off): %s" % cut[:4])
     top = browser.eval("document.querySelector('.verdict').getBoundingClientRect().top")
     check(top < 900, "the verdict is in the first screen (top at %d px)" % top)
     bare = browser.eval("[...document.querySelectorAll('table.cost th')].filter(h => !(h.title || '').trim()).map(h => h.textContent)")
