@@ -18,8 +18,9 @@ ssaa:4, which trips the memory gate against the second). Checks from the DOM at 
   times a power of ten, evenly stepped);
 - every chart fits its card and nothing is wider than the page;
 - trends: every series has one legend entry, and within a chart no two entries look alike (colour, dash,
-  marker); the gate markers on the memory trend are exactly the memory gates `aalab compare` trips for the
-  third job against the second; every GPU-time point's tooltip names its method, commit and job, its median
+  marker); every line is named at its end, joined to its last point, no two names overlapping; the gate
+  markers on the memory trend are exactly the memory gates `aalab compare` trips for the third job against
+  the second; every GPU-time point's tooltip names its method, commit and job, its median
   and its p10-p90 spread and count as results.json has them, and a pointer over a point shows it.
 Skipped (77) only when chromium is not installed. With --shots DIR it keeps screenshots of each view
 (docs/img/dashboard-*.png are these: --shots docs/img)."""
@@ -240,6 +241,36 @@ def main():
                  len({tuple(l[1:]) for l in t["legend"]}) == len(t["legend"]) for t in trends)
         check(ok and trends and all(len(t["series"]) == 10 for t in trends),
               "every series has a legend entry, each of its own colour and pattern (10 series per chart)")
+        ends = b.eval("""[...document.querySelectorAll('.trend svg')].map(svg => {
+            const box = e => { const r = e.getBBox(); return [r.x, r.y, r.x + r.width, r.y + r.height]; };
+            const vb = svg.viewBox.baseVal;
+            return {series: [...svg.querySelectorAll('g.series')].map(g => {
+                const pts = [...g.querySelectorAll('.trend-point')].map(p => { const b = box(p); return [(b[0] + b[2]) / 2, (b[1] + b[3]) / 2]; });
+                const names = [...g.querySelectorAll('.end-label')];
+                const lead = g.querySelector('.end-leader');
+                return {method: g.dataset.method, last: pts[pts.length - 1], names: names.map(n => n.textContent),
+                        box: names.length ? box(names[0]) : null,
+                        leader: lead ? lead.getAttribute('points').split(' ').map(p => p.split(',').map(Number)) : null}; }),
+                    size: [vb.width, vb.height]}; })""")
+        bad = []
+        for chart in ends:
+            ser = chart["series"]
+            for s_ in ser:
+                if s_["names"] != [s_["method"]] or not s_["leader"]:
+                    bad.append((s_["method"], "named", s_["names"]))
+                    continue
+                a, z, bx = s_["leader"][0], s_["leader"][-1], s_["box"]
+                if math.hypot(a[0] - s_["last"][0], a[1] - s_["last"][1]) > 1 or not (bx[1] - 1 <= z[1] <= bx[3] + 1 and abs(z[0] - bx[0]) < 6):
+                    bad.append((s_["method"], "leader", a, z, bx))
+                if bx[0] < 0 or bx[1] < 0 or bx[2] > chart["size"][0] or bx[3] > chart["size"][1]:
+                    bad.append((s_["method"], "outside", bx))
+            for i, p in enumerate(ser):
+                for q in ser[i + 1:]:
+                    if p["box"] and q["box"] and p["box"][0] < q["box"][2] and q["box"][0] < p["box"][2] and \
+                            p["box"][1] < q["box"][3] - 0.5 and q["box"][1] < p["box"][3] - 0.5:
+                        bad.append((p["method"], q["method"], "overlap"))
+        check(ends and not bad, "each line is named at its end (one name, joined to its last point by a leader), "
+              "no two names overlap, all within the chart: %s" % bad[:4])
         marks = sorted((t["case"], m[1], m[2]) for t in trends for m in t["marks"] if m[0] == ids[2])
         want = sorted((t["case"], t["method"], t["gate"]) for t in tripped if t["gate"].startswith("memory"))
         check(marks == want and want, "the memory trend marks exactly the memory gates aalab compare trips: %s" % marks)
@@ -343,7 +374,8 @@ def check_cost_axis(b, case, log):
     check(not misplaced and len(ticks) >= 2, what + "cost axis: ticks sit at their values: %s" % misplaced)
     if log:
         roundish = all(v > 0 and any(abs(v / (mm * 10 ** math.floor(math.log10(v) + 1e-9)) - 1) < 1e-9 for mm in (1, 2, 5)) for _, v in ticks)
-        check(roundish, "log cost axis: ticks are 1, 2 or 5 times a power of ten: %s" % [v for _, v in ticks])
+        check(roundish and len(ticks) >= 3, "log cost axis: three or more ticks, each 1, 2 or 5 times a power of ten: %s"
+              % [v for _, v in ticks])
     else:
         check(round_ticks([v for _, v in got["ticks"]]), "cost axis ticks are round and evenly stepped")
 
