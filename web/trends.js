@@ -52,7 +52,8 @@ function trendChart(caseId, series, jobs, metric, byId, familyFilter) {
         (gate.length ? " \u00b7 tripped against the baseline: " + gate.map(t => t.gate).join(", ") : "");
       g.append(marker(st.marker, px, py, 3.5, st.color, {"data-tip": tip, class: "trend-point"}));
       for (const t of gate.filter(t => gateMetric(t.gate) === metric))
-        g.append(s("path", {class: "gate-mark", "data-job": jobs[i].id, "data-method": ser.method, "data-gate": t.gate,
+        g.append(s("circle", {class: "gate-ring", cx: px, cy: py, r: 7, fill: "none", stroke: "#cf222e", "stroke-width": 2}),
+                 s("path", {class: "gate-mark", "data-job": jobs[i].id, "data-method": ser.method, "data-gate": t.gate,
           d: `M${px} ${py - 8}l6 -10h-12z`, "data-tip": "gate " + t.gate + " tripped: " + ser.method + " at commit " + jobs[i].x + ": " + t.message}));
     }
     svg.append(g);
