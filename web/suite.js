@@ -56,6 +56,7 @@ function fmtCell(mode, v) {
   if (v === Infinity) return "ident.";
   if (mode === "flip") return v.toFixed(3);
   if (mode === "gpu_ms") return v < 10 ? v.toFixed(2) : v.toFixed(1);
+  if (Number(v.toFixed(1)) === 0) return "0.0"; /* -0.03 dB is no change: not "-0.0" */
   return (MATRIX_MODES[mode].diverging && v > 0 ? "+" : "") + v.toFixed(1);
 }
 

@@ -104,7 +104,8 @@ def main():
                 want = math.inf if p["identical"] else p["mean"] - none
                 got = float(c["value"]) if c["value"] not in ("", "Infinity") else (math.inf if c["value"] else None)
                 text = "ident." if want == math.inf else "%+.1f" % want if round(want, 1) != 0 else "%.1f" % abs(want)
-                if got is None or (want != math.inf and abs(got - want) > 1e-9) or c["text"].lstrip("+-") != text.lstrip("+-"):
+                if got is None or (want != math.inf and abs(got - want) > 1e-9) or c["text"].lstrip("+-") != text.lstrip("+-") \
+                        or c["text"] in ("-0.0", "+0.0"):
                     bad.append((case["id"], c["method"], c["value"], c["text"], want))
                 if c["front"] != (c["method"] in case["verdict"]["front"]):
                     bad.append((case["id"], c["method"], "front", c["front"]))
@@ -114,6 +115,9 @@ def main():
                 bad.append((case["id"], "warnings", row["warnings"]))
         check(not bad, "each matrix cell is results.json's PSNR over none, the front ringed, verdict and warnings "
               "per case: %s" % bad[:4])
+
+        fmt = b.eval("[-0.03, 0.04, 0.06, -0.06].map(v => fmtCell('over_none', v))")
+        check(fmt == ["0.0", "0.0", "+0.1", "-0.1"], "a change that rounds to 0.0 dB is written 0.0, never -0.0: %s" % fmt)
 
         # ------------------------------------------------------------ filters: scene, size, method family
         row_ids = "[...document.querySelectorAll('#matrix tr.case-row')].map(r => r.dataset.case)"
