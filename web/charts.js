@@ -61,15 +61,26 @@ function niceTicks(lo, hi, count) {
   return {lo: first * step, hi: last * step, ticks, text: v => v.toFixed(decimals)};
 }
 
-/* Log-axis ticks: 1, 2 and 5 times each power of ten between lo and hi (lo > 0). */
+/* Log-axis ticks between lo and hi (lo > 0): 1, 2 and 5 times each power of ten, or only the powers when
+ * those alone give four ticks or more (so that a range of 1 to 80 has 1, 2, 5, 10, 20, 50, not 1 and 10);
+ * a range too narrow for three of those gets evenly stepped round ticks. */
 function logTicks(lo, hi) {
   const a = Math.floor(Math.log10(lo)), b = Math.ceil(Math.log10(hi));
-  const ticks = [];
-  for (let e = a; e <= b; e++)
-    for (const m of (b - a > 2 ? [1] : [1, 2, 5])) {
-      const v = Number((m * Math.pow(10, e)).toPrecision(3));
-      if (v >= lo * 0.999 && v <= hi * 1.001) ticks.push(v);
-    }
+  const within = ms => {
+    const ticks = [];
+    for (let e = a; e <= b; e++)
+      for (const m of ms) {
+        const v = Number((m * Math.pow(10, e)).toPrecision(3));
+        if (v >= lo * 0.999 && v <= hi * 1.001) ticks.push(v);
+      }
+    return ticks;
+  };
+  const powers = within([1]);
+  const ticks = powers.length >= 4 ? powers : within([1, 2, 5]);
+  if (ticks.length < 3) { /* a narrow range (0.8 to 2.4 ms): evenly stepped round ticks, placed on the log scale */
+    const even = niceTicks(lo, hi, 5);
+    return {lo, hi, ticks: even.ticks.filter(v => v > 0 && v >= lo * 0.999 && v <= hi * 1.001), text: even.text};
+  }
   return {lo: Math.pow(10, Math.log10(lo)), hi, ticks, text: v => v >= 1 ? String(v) : v.toPrecision(1)};
 }
 

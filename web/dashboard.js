@@ -112,9 +112,11 @@ function setOptions(select, options, preferred) {
 async function drawTrends(jobs) {
   const done = jobs.filter(j => j.state === "done");
   const suiteSel = document.getElementById("trend-suite"), labelSel = document.getElementById("trend-label");
-  /* the most recent suite first: the selector opens on it */
+  /* the most recent first; the selector opens on the most recent named suite (a one-case job without a
+   * suite name has a trend of its own, but is rarely what a trend is opened for) */
   const suites = [...new Set(done.slice().reverse().map(suiteKey))];
-  setOptions(suiteSel, suites.map(k => [k, k.startsWith("sha256:") ? "job " + k.slice(7, 19) : k]), suites[0]);
+  const named = suites.find(k => !k.startsWith("sha256:"));
+  setOptions(suiteSel, suites.map(k => [k, k.startsWith("sha256:") ? "job " + k.slice(7, 19) : k]), named || suites[0]);
   const inSuite = done.filter(j => suiteKey(j) === suiteSel.value);
   /* labels that several jobs share (the commit label differs per job, so it is the x axis instead) */
   const labels = [...new Set(inSuite.flatMap(j => Object.entries(j.spec.labels || {})

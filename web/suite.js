@@ -56,6 +56,7 @@ function fmtCell(mode, v) {
   if (v === Infinity) return "ident.";
   if (mode === "flip") return v.toFixed(3);
   if (mode === "gpu_ms") return v < 10 ? v.toFixed(2) : v.toFixed(1);
+  if (Number(v.toFixed(1)) === 0) return "0.0"; /* -0.03 dB is no change: not "-0.0" */
   return (MATRIX_MODES[mode].diverging && v > 0 ? "+" : "") + v.toFixed(1);
 }
 
@@ -184,7 +185,7 @@ function costChart(c, ui, highlight) {
   for (const m of methods) {
     const [px, pyy] = at.get(m.label), st = style.get(m.label);
     if (typeof m.gpu_ms.p10 === "number" && typeof m.gpu_ms.p90 === "number" && (!log || m.gpu_ms.p10 > 0))
-      svg.append(s("path", {class: "spread", stroke: st.color,
+      svg.append(s("path", {class: "spread", stroke: st.color, "data-method": m.label,
         d: `M${x.scale(m.gpu_ms.p10)} ${pyy}H${x.scale(m.gpu_ms.p90)}M${x.scale(m.gpu_ms.p10)} ${pyy - 4}v8M${x.scale(m.gpu_ms.p90)} ${pyy - 4}v8`}));
   }
   const labels = placeLabels(methods.map(m => ({x: at.get(m.label)[0], y: at.get(m.label)[1], text: m.label})),

@@ -15,7 +15,7 @@ function gateMetric(gate) {
 const METRIC_TEXT = {psnr: "PSNR dB", ssim: "SSIM", flip: "FLIP", flicker: "flicker", gpu_ms: "GPU ms per frame", memory: "memory MiB"};
 
 function trendChart(caseId, series, jobs, metric, byId, familyFilter) {
-  const W = 660, H = 300, frame = {L: 58, R: W - 12, T: 12, B: H - 66};
+  const W = 660, H = 300, frame = {L: 58, R: W - 112, T: 12, B: H - 66};
   const shown = series.filter(x => !familyFilter || x.method.split(":")[0] === familyFilter);
   const unit = metric === "memory" ? 1 / 1048576 : 1;
   const vals = shown.flatMap(x => x.values).filter(v => v !== null).map(v => v * unit);
@@ -34,6 +34,7 @@ function trendChart(caseId, series, jobs, metric, byId, familyFilter) {
                           (here.length ? "; tripped: " + here.map(t => t.method + " " + t.gate).join("; ") : "")}, label));
   });
   const legend = el("ul", {class: "legend trend-legend"});
+  const ends = []; /* each series' last point, for the names at the lines' ends */
   shown.forEach((ser) => {
     const k = series.indexOf(ser), st = seriesStyle(k);
     const g = s("g", {class: "series", "data-method": ser.method});
@@ -51,15 +52,39 @@ function trendChart(caseId, series, jobs, metric, byId, familyFilter) {
         (gate.length ? " \u00b7 tripped against the baseline: " + gate.map(t => t.gate).join(", ") : "");
       g.append(marker(st.marker, px, py, 3.5, st.color, {"data-tip": tip, class: "trend-point"}));
       for (const t of gate.filter(t => gateMetric(t.gate) === metric))
-        g.append(s("path", {class: "gate-mark", "data-job": jobs[i].id, "data-method": ser.method, "data-gate": t.gate,
+        g.append(s("circle", {class: "gate-ring", cx: px, cy: py, r: 7, fill: "none", stroke: "#cf222e", "stroke-width": 2}),
+                 s("path", {class: "gate-mark", "data-job": jobs[i].id, "data-method": ser.method, "data-gate": t.gate,
           d: `M${px} ${py - 8}l6 -10h-12z`, "data-tip": "gate " + t.gate + " tripped: " + ser.method + " at commit " + jobs[i].x + ": " + t.message}));
     }
     svg.append(g);
+    if (pts.length) ends.push({g, method: ser.method, color: st.color, x: pts[pts.length - 1][0], y: pts[pts.length - 1][1]});
     const item = el("li", {"data-method": ser.method, "data-color": st.color, "data-dash": st.dash, "data-marker": st.marker},
                     swatch(st), ser.method);
     item.addEventListener("mouseenter", () => svg.classList.add("focus") || g.classList.add("on"));
     item.addEventListener("mouseleave", () => { svg.classList.remove("focus"); g.classList.remove("on"); });
     legend.append(item);
   });
+  endLabels(ends, frame);
   return el("div", {class: "trend card"}, el("h4", {}, caseId + " \u00b7 " + (METRIC_TEXT[metric] || metric)), svg, legend);
+}
+
+/* Names each line at its end, as asv and most plotting guides do: the names stand in a column right of the
+ * plot, each as near its line's last point as the names above and below it allow (at least LINE px apart,
+ * kept within the chart), joined to that point by a thin line in the series' colour. A reader
+ * names a line from the chart alone, without matching colours against the legend. */
+function endLabels(ends, frame) {
+  const low = frame.B + 56; /* names may run below the plot: the commit names there sit further left */
+  const LINE = Math.min(13, (low - frame.T) / Math.max(1, ends.length - 1)), x0 = frame.R + 6, xt = frame.R + 22;
+  const order = ends.slice().sort((a, b) => a.y - b.y);
+  const top = frame.T + LINE / 2, bottom = Math.max(low, top + LINE * (order.length - 1));
+  let y = -Infinity;
+  for (const e of order) { e.ly = Math.max(e.y, y + LINE, top); y = e.ly; }
+  /* past the bottom: pushed back up, keeping the spacing */
+  y = Infinity;
+  for (const e of order.slice().reverse()) { e.ly = Math.min(e.ly, y - LINE, bottom); y = e.ly; }
+  for (const e of order) {
+    e.g.append(s("polyline", {class: "end-leader", fill: "none", stroke: e.color, "stroke-width": 1,
+                              points: `${e.x},${e.y} ${x0},${e.y} ${xt - 3},${e.ly}`}),
+               s("text", {class: "end-label", "data-method": e.method, x: xt, y: e.ly + 4, fill: e.color}, e.method));
+  }
 }

@@ -437,7 +437,11 @@ void aa_report_chart_psnr_per_frame(FILE *o, const struct aa_job_result *r)
 	}
 	fputs("</svg>\n", o);
 	legend(o, r);
-	fputs("</figure>\n", o);
+	fputs("<figcaption>Each line is one method's PSNR against the reference, frame by frame: higher is closer; a "
+	      "dip is a frame the method gets wrong.", o);
+	if (any_identical)
+		fputs(" Identical frames sit in the band at the top.", o);
+	fputs("</figcaption>\n</figure>\n", o);
 }
 
 /* Each method's GPU time split by pass: one bar per method, its passes end to end (the median of each pass
@@ -464,7 +468,17 @@ void aa_report_chart_passes(FILE *o, const struct aa_job_result *r)
 		fputs("<p class=\"note\">No per-pass GPU times.</p>\n", o);
 		return;
 	}
-	const double L = 150, R = 440, T = 8, row = 24, W = 1080, H = T + row * rows + 40;
+	/* the names after the bars: the chart is as wide as the longest line (12 px text, at most about 7.4 px
+	 * a character), so that no name is cut off at the chart's edge; the page scales the chart to its card */
+	double widest = 0;
+	for (int i = 0; i < rows; i++) {
+		const struct aa_method_result *m = &r->methods[i];
+		double chars = 0;
+		for (int k = 0; m->frame_count > 0 && k < m->frames[0].pass_count && k < AA_MAX_PASSES; k++)
+			chars += strlen(m->frames[0].passes[k].name) + 13; /* "■ ", " 12.34", 3 spaces, and slack */
+		widest = fmax(widest, chars * 7.4);
+	}
+	const double L = 150, R = 440, T = 8, row = 24, W = fmax(1080, R + 60 + widest), H = T + row * rows + 40;
 	double lo = 0, hi = xmax, step;
 	nice_range(&lo, &hi, &step);
 	fprintf(o, "<figure>\n<svg class=\"chart passes\" viewBox=\"0 0 %.0f %.0f\" role=\"img\" aria-label=\"GPU time of each "

@@ -119,15 +119,18 @@ void aa_report_cost_table(FILE *o, const struct aa_job_result *r, const struct a
 {
 	/* every column a number or a word; the long texts (path taken, alpha test) go in a detail row under
 	 * each method, so that the table fits a 1280 px window */
-	fputs("<table class=\"cost\">\n<tr><th>Method</th><th title=\"the verdict: on the cost-quality front, beaten by another "
+	fputs("<table class=\"cost\">\n<tr><th title=\"the method's label in the job; its path and alpha test in the row "
+	      "under it\">Method</th><th title=\"the verdict: on the cost-quality front, beaten by another "
 	      "method, or not ranked (too few timed renders)\">Verdict</th>"
 	      "<th class=\"n\" title=\"median GPU time of a frame over every timed render\">GPU ms<br>median</th>"
 	      "<th class=\"n\" title=\"10th to 90th percentile of the GPU time over every timed render\">GPU ms<br>p10&ndash;p90</th>"
-	      "<th class=\"n\">GPU ms<br>min</th>"
+	      "<th class=\"n\" title=\"the fastest timed render\">GPU ms<br>min</th>"
 	      "<th class=\"n\" title=\"timed renders: frames x repeat\">n</th>"
-	      "<th class=\"n\">CPU ms<br>median</th><th class=\"n\">Memory<br>MiB</th>"
+	      "<th class=\"n\" title=\"median wall time of a frame: record, submit and wait\">CPU ms<br>median</th>"
+	      "<th class=\"n\" title=\"memory the method allocates (item by item under Memory)\">Memory<br>MiB</th>"
 	      "<th class=\"n\" title=\"peak signal-to-noise ratio against the reference; higher is closer\">PSNR dB<br>mean</th>"
-	      "<th class=\"n\">PSNR dB<br>worst</th><th class=\"n\" title=\"structural similarity, 1 = same\">SSIM<br>mean</th>"
+	      "<th class=\"n\" title=\"PSNR of the method's worst frame, and which frame\">PSNR dB<br>worst</th>"
+	      "<th class=\"n\" title=\"structural similarity, 1 = same\">SSIM<br>mean</th>"
 	      "<th class=\"n\" title=\"perceived difference when flipping between method and reference, 0 = none\">"
 	      "FLIP<br>mean</th>"
 	      "<th class=\"n\" title=\"mean |change between frames - the reference's change|, 8-bit levels\">"

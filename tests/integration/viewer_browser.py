@@ -369,8 +369,23 @@ def page_checks(browser, job, tmp):
         .map(e => e.tagName + '.' + (e.getAttribute('class') || '')))()""")
     page = browser.eval("document.documentElement.scrollWidth")
     check(not wide and page <= 1280, "at 1280 px nothing overflows its card (page %d px): %s" % (page, wide[:4]))
+    cut = browser.eval("""[...document.querySelectorAll('main svg text')].filter(t => {
+        const s = t.closest('svg').getBoundingClientRect(), r = t.getBoundingClientRect();
+        return r.width > 0 && (r.right > s.right + 1 || r.left < s.left - 1); }).map(t => t.textContent.slice(0, 40))""")
+    check(not cut, "no chart text runs past its chart's edge (where it would be cut off): %s" % cut[:4])
     top = browser.eval("document.querySelector('.verdict').getBoundingClientRect().top")
     check(top < 900, "the verdict is in the first screen (top at %d px)" % top)
+    bare = browser.eval("[...document.querySelectorAll('table.cost th')].filter(h => !(h.title || '').trim()).map(h => h.textContent)")
+    check(not bare and browser.eval("document.querySelectorAll('table.cost th').length") > 0,
+          "every column head of the cost table explains itself on hover: %s" % bare)
+    uncaptioned = browser.eval("[...document.querySelectorAll('main figure')].filter(f => f.querySelector('svg.chart')).filter(f => !f.querySelector('figcaption')"
+                               " || !f.querySelector('figcaption').textContent.trim()).map(f => f.previousElementSibling && "
+                               "f.previousElementSibling.textContent)")
+    check(not uncaptioned, "every figure says what it shows in a caption: %s" % uncaptioned)
+    terms = browser.eval("[...document.querySelectorAll('dl.glossary dt')].map(d => d.textContent)")
+    want = ["Reference", "Convergence PSNR", "PSNR", "SSIM", "FLIP", "Flicker", "GPU ms", "Front", "Worst regions"]
+    check(all(w in terms for w in want) and browser.eval("!!document.querySelector('a[href=\"#glossary\"]')"),
+          "the glossary, linked from the top, explains %s: %s" % (", ".join(want), terms))
     alone = os.path.join(tmp, "alone")
     os.makedirs(alone)
     shutil.copy(os.path.join(job, "report.html"), alone)
