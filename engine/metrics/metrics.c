@@ -138,12 +138,9 @@ int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_imag
 	float *map = malloc(n * sizeof *map);
 	if (!map)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a %dx%d FLIP map", ref->width, ref->height);
-	struct aa_flip_stats stats;
 	int rc = aa_flip_ldr_rgba8(ref, test, NULL, map, err);
-	if (rc == 0 && aa_flip_pool(map, n, &stats) != 0)
-		rc = aa_error_set(err, AA_ERR_LIMIT, "", "out of memory pooling a %dx%d FLIP map", ref->width, ref->height);
 	if (rc == 0) {
-		out->flip_mean = stats.mean;
+		out->flip_mean = aa_flip_mean(map, n); /* the weighted quartiles (aa_flip_pool) are not reported */
 		if (flip_image && flip_image->width == ref->width && flip_image->height == ref->height)
 			aa_flip_colorize(map, true, flip_image);
 	}
