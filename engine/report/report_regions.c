@@ -19,13 +19,7 @@ struct magma_entry {
 	int index;
 };
 
-static int by_rgb(const void *a, const void *b)
-{
-	const uint32_t x = ((const struct magma_entry *)a)->rgb, y = ((const struct magma_entry *)b)->rgb;
-	return (x > y) - (x < y);
-}
-
-/* The magma colours sorted for bsearch; entries colliding on one colour keep the first index. */
+/* The magma colours in index order. */
 static void magma_table(struct magma_entry table[256])
 {
 	float ramp[256];
@@ -36,11 +30,48 @@ static void magma_table(struct magma_entry table[256])
 	aa_flip_colorize(ramp, true, &img);
 	for (int i = 0; i < 256; i++)
 		table[i] = (struct magma_entry){ (uint32_t)px[4 * i] << 16 | (uint32_t)px[4 * i + 1] << 8 | px[4 * i + 2], i };
-	qsort(table, 256, sizeof table[0], by_rgb);
+}
+
+/* The magma index of each colour, hashed (open addressing, linear probing): a lookup for every pixel of
+ * every map, so cheaper than a search of a sorted table. Entries colliding on one colour would keep the
+ * first index (the 256 colours are distinct). A slot holds rgb | MAGMA_USED, 0 when empty. */
+#define MAGMA_SLOTS 1024
+#define MAGMA_USED 0x1000000u
+struct magma_hash {
+	uint32_t key[MAGMA_SLOTS];
+	int index[MAGMA_SLOTS];
+};
+
+static unsigned magma_slot(uint32_t rgb)
+{
+	return (rgb * 2654435761u) >> 22; /* the top 10 bits: MAGMA_SLOTS */
+}
+
+static void magma_hash_init(struct magma_hash *h, const struct magma_entry table[256])
+{
+	memset(h->key, 0, sizeof h->key);
+	for (int i = 0; i < 256; i++) {
+		unsigned s = magma_slot(table[i].rgb);
+		while (h->key[s] && h->key[s] != (table[i].rgb | MAGMA_USED))
+			s = (s + 1) % MAGMA_SLOTS;
+		if (!h->key[s]) {
+			h->key[s] = table[i].rgb | MAGMA_USED;
+			h->index[s] = table[i].index;
+		}
+	}
+}
+
+/* The colour's magma index, or -1 when it is not a magma colour. */
+static int magma_lookup(const struct magma_hash *h, uint32_t rgb)
+{
+	for (unsigned s = magma_slot(rgb); h->key[s]; s = (s + 1) % MAGMA_SLOTS)
+		if (h->key[s] == (rgb | MAGMA_USED))
+			return h->index[s];
+	return -1;
 }
 
 /* Adds each tile's summed FLIP value of one map to sums; -1 when the map cannot be read or is not WxH. */
-static int add_map(const char *path, int width, int height, int tile, int tiles_x, const struct magma_entry *table,
+static int add_map(const char *path, int width, int height, int tile, int tiles_x, const struct magma_hash *table,
 		   double *sums)
 {
 	struct aa_file_pixels px = { 0 };
@@ -52,10 +83,9 @@ static int add_map(const char *path, int width, int height, int tile, int tiles_
 	const uint8_t *p = px.data;
 	for (int y = 0; y < height; y++)
 		for (int x = 0; x < width; x++, p += px.channels) {
-			const struct magma_entry key = { (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2], 0 };
-			const struct magma_entry *hit = bsearch(&key, table, 256, sizeof table[0], by_rgb);
-			if (hit)
-				sums[(y / tile) * tiles_x + x / tile] += hit->index / 255.0;
+			const int index = magma_lookup(table, (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2]);
+			if (index >= 0)
+				sums[(y / tile) * tiles_x + x / tile] += index / 255.0;
 		}
 	free(px.data);
 	return 0;
@@ -120,9 +150,12 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	double *total = calloc((size_t)tiles, sizeof *total), *in_frame = calloc((size_t)tiles, sizeof *in_frame),
 	       *worst = calloc((size_t)tiles, sizeof *worst);
 	int *worst_frame = calloc((size_t)tiles, sizeof *worst_frame);
-	struct magma_entry table[256];
-	magma_table(table);
-	bool ok = total && in_frame && worst && worst_frame;
+	struct magma_entry colours[256];
+	magma_table(colours);
+	struct magma_hash *table = malloc(sizeof *table);
+	if (table)
+		magma_hash_init(table, colours);
+	bool ok = total && in_frame && worst && worst_frame && table;
 	for (int f = 0; ok && f < frames; f++) {
 		memset(in_frame, 0, (size_t)tiles * sizeof *in_frame);
 		for (int m = 0; ok && m < r->method_count; m++) {
@@ -169,5 +202,6 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	free(in_frame);
 	free(worst);
 	free(worst_frame);
+	free(table);
 	return out;
 }
