@@ -261,6 +261,49 @@ static void test_ssim_channel_matches_rgb(void **state)
 	aa_image_rgba8_free(&test);
 }
 
+/* SSIM to the last bit on two fixed pairs (gradients, stripes and noise; one of the job's sizes): values
+ * computed by the plain scalar kernels. The vectorised kernels must keep every operation and its order,
+ * so an FMA, a reassociated sum or a changed filter order shows here, where the 1e-12 checks above and
+ * scikit-image's 1e-4 would let it through. */
+static void make_ssim_pair(struct aa_image_rgba8 *a, struct aa_image_rgba8 *b, int w, int h)
+{
+	uint32_t x = 2463534242u;
+	for (int y = 0; y < h; y++)
+		for (int i = 0; i < w; i++) {
+			uint8_t *p = a->pixels + 4 * ((size_t)y * w + i), *q = b->pixels + 4 * ((size_t)y * w + i);
+			for (int c = 0; c < 3; c++) {
+				x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+				int v = (i * 255 / w + y * (c + 1)) % 256;
+				if ((i / 7 + y / 5) % 2) v = 255 - v;
+				p[c] = (uint8_t)v;
+				int n = (int)(x % 41) - 20;
+				int t = v + n;
+				q[c] = (uint8_t)(t < 0 ? 0 : t > 255 ? 255 : t);
+			}
+			p[3] = q[3] = 255;
+		}
+}
+
+static void test_ssim_pinned_bits(void **state)
+{
+	(void)state;
+	const struct { int w, h; double ssim; } pinned[2] = {
+		{ 97, 61, 0x1.d57bf5daa75ddp-1 },
+		{ 640, 360, 0x1.d3d508d828105p-1 },
+	};
+	for (int k = 0; k < 2; k++) {
+		struct aa_image_rgba8 a, b;
+		assert_int_equal(aa_image_rgba8_alloc(&a, pinned[k].w, pinned[k].h), 0);
+		assert_int_equal(aa_image_rgba8_alloc(&b, pinned[k].w, pinned[k].h), 0);
+		make_ssim_pair(&a, &b, pinned[k].w, pinned[k].h);
+		const double v = aa_ssim_rgba8(&a, &b);
+		if (v != pinned[k].ssim)
+			fail_msg("SSIM of the %dx%d pair %a, pinned %a", pinned[k].w, pinned[k].h, v, pinned[k].ssim);
+		aa_image_rgba8_free(&a);
+		aa_image_rgba8_free(&b);
+	}
+}
+
 static void test_ssim_small_images(void **state)
 {
 	(void)state;
@@ -573,6 +616,7 @@ int main(void)
 		cmocka_unit_test(test_ssim_matches_direct_evaluation),
 		cmocka_unit_test(test_ssim_channel_matches_rgb),
 		cmocka_unit_test(test_ssim_small_images),
+		cmocka_unit_test(test_ssim_pinned_bits),
 		cmocka_unit_test(test_size_mismatch),
 		cmocka_unit_test(test_linear_psnr),
 		cmocka_unit_test(test_psnr_from_mse),
