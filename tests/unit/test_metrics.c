@@ -167,6 +167,35 @@ static void test_exceedance_curve(void **state)
 	aa_image_rgba8_free(&test);
 }
 
+/* The curve on 65,536 pixels of many colours against the definition evaluated per pixel and threshold
+ * (luma of each as written, err > i/100): the counts must be the same exactly, whatever tables or
+ * shortcuts the metric uses. */
+static void test_exceedance_curve_by_definition(void **state)
+{
+	(void)state;
+	struct aa_image_rgba8 ref, test;
+	alloc_rgba8(&ref, 256, 256);
+	alloc_rgba8(&test, 256, 256);
+	size_t over[AA_THRESHOLD_COUNT] = { 0 };
+	for (int y = 0; y < 256; y++)
+		for (int x = 0; x < 256; x++) {
+			uint8_t *r = ref.pixels + 4 * (y * 256 + x), *t = test.pixels + 4 * (y * 256 + x);
+			r[0] = (uint8_t)x, r[1] = (uint8_t)y, r[2] = (uint8_t)(x ^ y);
+			t[0] = (uint8_t)y, t[1] = (uint8_t)(x + 3 * y), t[2] = (uint8_t)(255 - x);
+			const double y_ref = (0.2126 * r[0] + 0.7152 * r[1] + 0.0722 * r[2]) / 255.0;
+			const double y_test = (0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]) / 255.0;
+			for (int i = 0; i < AA_THRESHOLD_COUNT; i++)
+				over[i] += fabs(y_test - y_ref) > i / 100.0;
+		}
+	struct aa_metrics m;
+	assert_int_equal(aa_metrics_compare_pixels(&ref, &test, &m, NULL), 0);
+	for (int i = 0; i < AA_THRESHOLD_COUNT; i++)
+		if (m.exceed[i] != (double)over[i] / 65536.0)
+			fail_msg("threshold %d: %.17g, by definition %.17g", i, m.exceed[i], (double)over[i] / 65536.0);
+	aa_image_rgba8_free(&ref);
+	aa_image_rgba8_free(&test);
+}
+
 /* Direct 2D evaluation of one channel's SSIM map mean: 11x11 Gaussian (sigma 1.5) built as an outer
  * product, window border cropped; independent of the separable, blocked, threaded implementation. */
 static double ssim_direct(const struct aa_image_rgba8 *a, const struct aa_image_rgba8 *b, int channel)
@@ -613,6 +642,7 @@ int main(void)
 		cmocka_unit_test(test_identical_images),
 		cmocka_unit_test(test_constant_images),
 		cmocka_unit_test(test_exceedance_curve),
+		cmocka_unit_test(test_exceedance_curve_by_definition),
 		cmocka_unit_test(test_ssim_matches_direct_evaluation),
 		cmocka_unit_test(test_ssim_channel_matches_rgb),
 		cmocka_unit_test(test_ssim_small_images),
