@@ -5,9 +5,11 @@
  * its crops (reference, then every method, as PNG data: URLs of a few hundred bytes), so the page draws
  * them at once, before or without the viewer's frame scripts. */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "image/image.h"
 #include "image/png_io.h"
@@ -91,6 +93,35 @@ static int add_map(const char *path, int width, int height, int tile, int tiles_
 	return 0;
 }
 
+/* Frames first + k (k = thread, thread + threads, ... below count): each frame's tile sums, methods in
+ * order, into sums + k * tiles (zeroed). */
+#define REGION_CHUNK 32
+#define REGION_THREADS 4
+struct region_sums {
+	const struct aa_job_result *r;
+	const char *dir;
+	int tile, tiles_x, tiles;
+	const struct magma_hash *table;
+	double *sums;
+	int first, count, thread, threads;
+	bool ok;
+};
+
+static void *region_sums_run(void *arg)
+{
+	struct region_sums *w = arg;
+	const struct aa_job_result *r = w->r;
+	for (int k = w->thread; w->ok && k < w->count; k += w->threads)
+		for (int m = 0; w->ok && m < r->method_count; m++) {
+			char rel[600], path[4096];
+			aa_results_frame_relpath("flip", r->methods[m].label, w->first + k, rel, sizeof rel);
+			snprintf(path, sizeof path, "%s/%s", w->dir, rel);
+			w->ok = add_map(path, r->spec.width, r->spec.height, w->tile, w->tiles_x, w->table,
+					w->sums + (size_t)k * w->tiles) == 0;
+		}
+	return NULL;
+}
+
 /* The tile (x, y, w, h) of the PNG at dir/rel as a data: URL, or null when the file cannot be read or is
  * not the job's size. */
 static json_t *crop_url(const char *dir, const char *rel, int width, int height, int x, int y, int w, int h)
@@ -147,31 +178,53 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	if (!r->spec.keep_frames || frames == 0 || width <= 0 || height <= 0 || tile <= 0)
 		return out;
 	const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile, tiles = tiles_x * tiles_y;
-	double *total = calloc((size_t)tiles, sizeof *total), *in_frame = calloc((size_t)tiles, sizeof *in_frame),
-	       *worst = calloc((size_t)tiles, sizeof *worst);
+	double *total = calloc((size_t)tiles, sizeof *total), *worst = calloc((size_t)tiles, sizeof *worst);
 	int *worst_frame = calloc((size_t)tiles, sizeof *worst_frame);
 	struct magma_entry colours[256];
 	magma_table(colours);
 	struct magma_hash *table = malloc(sizeof *table);
 	if (table)
 		magma_hash_init(table, colours);
-	bool ok = total && in_frame && worst && worst_frame && table;
-	for (int f = 0; ok && f < frames; f++) {
-		memset(in_frame, 0, (size_t)tiles * sizeof *in_frame);
-		for (int m = 0; ok && m < r->method_count; m++) {
-			char rel[600], path[4096];
-			aa_results_frame_relpath("flip", r->methods[m].label, f, rel, sizeof rel);
-			snprintf(path, sizeof path, "%s/%s", dir, rel);
-			ok = add_map(path, width, height, tile, tiles_x, table, in_frame) == 0;
+	/* Frames a chunk at a time, their maps read on threads (decoding the PNGs is most of the cost), each
+	 * frame's sums made as one thread would make them; then added up in frame order, so the regions are
+	 * the same with any number of threads. */
+	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	const int threads = cpus < 1 ? 1 : cpus > REGION_THREADS ? REGION_THREADS : (int)cpus;
+	double *chunk = calloc((size_t)REGION_CHUNK * (size_t)tiles, sizeof *chunk);
+	bool ok = total && worst && worst_frame && table && chunk;
+	for (int f0 = 0; ok && f0 < frames; f0 += REGION_CHUNK) {
+		const int n = frames - f0 < REGION_CHUNK ? frames - f0 : REGION_CHUNK;
+		memset(chunk, 0, (size_t)n * (size_t)tiles * sizeof *chunk);
+		struct region_sums work[REGION_THREADS];
+		pthread_t tids[REGION_THREADS];
+		bool started[REGION_THREADS] = { false };
+		for (int t = 0; t < threads; t++)
+			work[t] = (struct region_sums){ .r = r, .dir = dir, .tile = tile, .tiles_x = tiles_x, .tiles = tiles,
+							.table = table, .sums = chunk, .first = f0, .count = n,
+							.thread = t, .threads = threads, .ok = true };
+		for (int t = 1; t < threads; t++)
+			started[t] = pthread_create(&tids[t], NULL, region_sums_run, &work[t]) == 0;
+		region_sums_run(&work[0]);
+		for (int t = 1; t < threads; t++) {
+			if (started[t])
+				pthread_join(tids[t], NULL);
+			else
+				region_sums_run(&work[t]);
+			ok = ok && work[t].ok;
 		}
-		for (int t = 0; ok && t < tiles; t++) {
-			total[t] += in_frame[t];
-			if (in_frame[t] > worst[t]) {
-				worst[t] = in_frame[t];
-				worst_frame[t] = f;
+		ok = ok && work[0].ok;
+		for (int k = 0; ok && k < n; k++) {
+			const double *in_frame = chunk + (size_t)k * tiles;
+			for (int t = 0; t < tiles; t++) {
+				total[t] += in_frame[t];
+				if (in_frame[t] > worst[t]) {
+					worst[t] = in_frame[t];
+					worst_frame[t] = f0 + k;
+				}
 			}
 		}
 	}
+	free(chunk);
 	/* The count tiles with the largest totals, worst first (tiles are disjoint: no overlap to resolve). */
 	for (int k = 0; ok && k < count; k++) {
 		int best = -1;
@@ -199,7 +252,6 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	if (!ok)
 		json_array_clear(out);
 	free(total);
-	free(in_frame);
 	free(worst);
 	free(worst_frame);
 	free(table);

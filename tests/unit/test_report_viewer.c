@@ -378,6 +378,42 @@ static void test_worst_regions_every_colour(void **state)
 	free_result(r);
 }
 
+/* More frames than the report reads at once (32): ordinals past the first chunk, and a tie across
+ * chunks shown at its first frame. */
+static void test_worst_regions_many_frames(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = make_result(40);
+	char *dir = make_tmpdir();
+	for (int f = 0; f < 40; f++) {
+		if (f == 33)
+			write_flip(dir, r->methods[0].label, f, 16, 0, 32, 16, 0.8f);
+		else if (f == 5 || f == 37)
+			write_flip(dir, r->methods[0].label, f, 0, 0, 16, 16, 0.2f);
+		else
+			write_flip(dir, r->methods[0].label, f, 0, 0, 0, 0, 0.0f);
+		write_flip(dir, r->methods[1].label, f, 0, 0, 0, 0, 0.0f);
+	}
+	json_t *g = aa_report_worst_regions(r, dir, 16, 6);
+	assert_int_equal(json_array_size(g), 2);
+	const int want[2][3] = { { 16, 0, 33 }, { 0, 0, 5 } };
+	for (int k = 0; k < 2; k++) {
+		json_t *e = json_array_get(g, (size_t)k);
+		if (json_integer_value(json_object_get(e, "x")) != want[k][0] ||
+		    json_integer_value(json_object_get(e, "y")) != want[k][1] ||
+		    json_integer_value(json_object_get(e, "ordinal")) != want[k][2])
+			fail_msg("region %d at (%lld, %lld) frame %lld, want (%d, %d) frame %d", k,
+				 (long long)json_integer_value(json_object_get(e, "x")),
+				 (long long)json_integer_value(json_object_get(e, "y")),
+				 (long long)json_integer_value(json_object_get(e, "ordinal")), want[k][0], want[k][1],
+				 want[k][2]);
+	}
+	json_decref(g);
+	remove_tree(dir);
+	free(dir);
+	free_result(r);
+}
+
 static void test_exr_event(void **state)
 {
 	(void)state;
@@ -457,6 +493,7 @@ int main(void)
 		cmocka_unit_test(test_viewer_frames),
 		cmocka_unit_test(test_worst_regions),
 		cmocka_unit_test(test_worst_regions_every_colour),
+		cmocka_unit_test(test_worst_regions_many_frames),
 		cmocka_unit_test(test_exr_event),
 		cmocka_unit_test(test_place_labels),
 	};
