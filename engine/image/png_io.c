@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 #define AA_PNG_MAX_SIDE 32768 /* as image.c: a hostile header cannot ask for a huge allocation */
 
@@ -215,10 +216,13 @@ static int write_png(FILE *f, struct png_memory *m, const struct aa_image_rgba8 
 		png_init_io(png, f);
 	else
 		png_set_write_fn(png, m, png_write_to_memory, png_flush_nothing);
-	/* Frames are written every frame of every job: fast compression, the one filter that suits
-	 * rendered images best on average, rather than libpng's default search over all five per row. */
-	png_set_compression_level(png, 3);
-	png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
+	/* Frames, difference images and FLIP maps are written every frame of every job: one fixed filter
+	 * rather than libpng's search over all five per row, and run-length matches only. Sub with Z_RLE
+	 * encodes rendered frames, differences and maps about twice as fast as Paeth at zlib level 3, in
+	 * files of about the same total size (docs/benchmarks.md). */
+	png_set_compression_level(png, 1);
+	png_set_compression_strategy(png, Z_RLE);
+	png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
 	bool rgb = opaque(img);
 	png_set_IHDR(png, info, (png_uint_32)img->width, (png_uint_32)img->height, 8,
 		     rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,

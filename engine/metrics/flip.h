@@ -64,6 +64,9 @@ int aa_flip_hdr(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *t
 
 /* Pooled statistics of n error values. Returns -1 when memory for sorting runs out (n > 0). */
 int aa_flip_pool(const float *map, size_t n, struct aa_flip_stats *out);
+/* The mean alone, summed as aa_flip_pool sums it (the same value), without the sort its weighted
+ * quartiles need. 0 when n is 0. */
+double aa_flip_mean(const float *map, size_t n);
 /* Sorts n floats ascending into out (NaN after +Inf). Returns -1 when memory runs out. */
 int aa_flip_sort_floats(const float *in, size_t n, float *out);
 

@@ -144,16 +144,29 @@ int aa_flip_sort_floats(const float *in, size_t n, float *out)
 	return 0;
 }
 
+/* float32 sums in row-major order, as the reference tool accumulates them. */
+static float map_sum(const float *map, size_t n)
+{
+	float sum = 0.0f;
+	for (size_t i = 0; i < n; i++)
+		sum += map[i];
+	return sum;
+}
+
+double aa_flip_mean(const float *map, size_t n)
+{
+	return n ? map_sum(map, n) / (float)n : 0.0;
+}
+
 int aa_flip_pool(const float *map, size_t n, struct aa_flip_stats *out)
 {
 	memset(out, 0, sizeof *out);
 	if (n == 0)
 		return 0;
-	/* float32 sums in row-major order, as the reference tool accumulates them. */
-	float sum = 0.0f, lo = FLT_MAX, hi = 0.0f;
+	const float sum = map_sum(map, n);
+	float lo = FLT_MAX, hi = 0.0f;
 	for (size_t i = 0; i < n; i++) {
 		float v = map[i];
-		sum += v;
 		lo = v < lo ? v : lo;
 		hi = v > hi ? v : hi;
 	}
@@ -275,8 +288,20 @@ static unsigned char to_byte(float c)
 	return (unsigned char)(255.0f * c + 0.5f);
 }
 
+/* The magma entries as bytes, converted once rather than for every pixel of every map. */
+static uint8_t magma8[256][3];
+static pthread_once_t magma8_once = PTHREAD_ONCE_INIT;
+
+static void magma8_init(void)
+{
+	for (int i = 0; i < 256; i++)
+		for (int c = 0; c < 3; c++)
+			magma8[i][c] = to_byte(magma[i][c]);
+}
+
 void aa_flip_colorize(const float *map, bool magma_map, struct aa_image_rgba8 *out)
 {
+	pthread_once(&magma8_once, magma8_init);
 	size_t n = (size_t)out->width * out->height;
 	for (size_t i = 0; i < n; i++) {
 		float v = map[i];
@@ -290,7 +315,8 @@ void aa_flip_colorize(const float *map, bool magma_map, struct aa_image_rgba8 *o
 		 * NaN or a huge value (never produced from finite input) shows as the top of the map instead of
 		 * overflowing the conversion to int. */
 		int index = v >= 0.0f && v < 1e6f ? (int)(v * 255.0f + 0.5f) % 256 : v >= 1e6f ? 255 : 0;
-		for (int c = 0; c < 3; c++)
-			px[c] = to_byte(magma[index][c]);
+		px[0] = magma8[index][0];
+		px[1] = magma8[index][1];
+		px[2] = magma8[index][2];
 	}
 }

@@ -2,6 +2,7 @@
 #include "metrics/metrics.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +37,24 @@ static bool have_pixels(const void *ref, const void *test, struct aa_error *err)
 	return false;
 }
 
+/* Per-pixel constants as tables, each entry the value the expression gives, so that every sum and
+ * comparison is the same: the thresholds i/100 (two or three compared for every pixel, without their
+ * divisions) and each luma weight times each 8-bit value. */
+static double threshold_of[AA_THRESHOLD_COUNT];
+static double luma_r[256], luma_g[256], luma_b[256];
+static pthread_once_t tables_once = PTHREAD_ONCE_INIT;
+
+static void tables_init(void)
+{
+	for (int i = 0; i < AA_THRESHOLD_COUNT; i++)
+		threshold_of[i] = i / 100.0;
+	for (int v = 0; v < 256; v++) {
+		luma_r[v] = LUMA_R * v;
+		luma_g[v] = LUMA_G * v;
+		luma_b[v] = LUMA_B * v;
+	}
+}
+
 /* Index of the last threshold i/100 that err exceeds (strictly), or -1 when err exceeds none.
  * The estimate from err*100 is corrected with the exact comparisons the curve is defined by. */
 static int last_threshold_exceeded(double err)
@@ -43,9 +62,9 @@ static int last_threshold_exceeded(double err)
 	int i = (int)(err * 100.0);
 	if (i > AA_THRESHOLD_COUNT - 1)
 		i = AA_THRESHOLD_COUNT - 1;
-	while (i >= 0 && !(err > i / 100.0))
+	while (i >= 0 && !(err > threshold_of[i]))
 		i--;
-	while (i + 1 < AA_THRESHOLD_COUNT && err > (i + 1) / 100.0)
+	while (i + 1 < AA_THRESHOLD_COUNT && err > threshold_of[i + 1])
 		i++;
 	return i;
 }
@@ -67,6 +86,7 @@ int aa_metrics_compare_pixels(const struct aa_image_rgba8 *ref, const struct aa_
 	    !have_pixels(ref->pixels, test->pixels, err))
 		return -1;
 
+	pthread_once(&tables_once, tables_init);
 	/* 8-bit sums fit easily in 64-bit integers (255^2 * 3 * 32768^2 < 2^63), so they are exact. */
 	size_t n = (size_t)ref->width * ref->height;
 	uint64_t sum_sq_err = 0, sum_sq_ref = 0;
@@ -82,8 +102,8 @@ int aa_metrics_compare_pixels(const struct aa_image_rgba8 *ref, const struct aa_
 			if (a > max_abs)
 				max_abs = a;
 		}
-		double y_ref = (LUMA_R * r[0] + LUMA_G * r[1] + LUMA_B * r[2]) / 255.0;
-		double y_test = (LUMA_R * t[0] + LUMA_G * t[1] + LUMA_B * t[2]) / 255.0;
+		double y_ref = (luma_r[r[0]] + luma_g[r[1]] + luma_b[r[2]]) / 255.0;
+		double y_test = (luma_r[t[0]] + luma_g[t[1]] + luma_b[t[2]]) / 255.0;
 		int last = last_threshold_exceeded(fabs(y_test - y_ref));
 		if (last >= 0)
 			last_exceeded_count[last]++;
@@ -138,12 +158,9 @@ int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_imag
 	float *map = malloc(n * sizeof *map);
 	if (!map)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a %dx%d FLIP map", ref->width, ref->height);
-	struct aa_flip_stats stats;
 	int rc = aa_flip_ldr_rgba8(ref, test, NULL, map, err);
-	if (rc == 0 && aa_flip_pool(map, n, &stats) != 0)
-		rc = aa_error_set(err, AA_ERR_LIMIT, "", "out of memory pooling a %dx%d FLIP map", ref->width, ref->height);
 	if (rc == 0) {
-		out->flip_mean = stats.mean;
+		out->flip_mean = aa_flip_mean(map, n); /* the weighted quartiles (aa_flip_pool) are not reported */
 		if (flip_image && flip_image->width == ref->width && flip_image->height == ref->height)
 			aa_flip_colorize(map, true, flip_image);
 	}

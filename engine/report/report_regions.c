@@ -5,9 +5,11 @@
  * its crops (reference, then every method, as PNG data: URLs of a few hundred bytes), so the page draws
  * them at once, before or without the viewer's frame scripts. */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "image/image.h"
 #include "image/png_io.h"
@@ -19,13 +21,7 @@ struct magma_entry {
 	int index;
 };
 
-static int by_rgb(const void *a, const void *b)
-{
-	const uint32_t x = ((const struct magma_entry *)a)->rgb, y = ((const struct magma_entry *)b)->rgb;
-	return (x > y) - (x < y);
-}
-
-/* The magma colours sorted for bsearch; entries colliding on one colour keep the first index. */
+/* The magma colours in index order. */
 static void magma_table(struct magma_entry table[256])
 {
 	float ramp[256];
@@ -36,11 +32,48 @@ static void magma_table(struct magma_entry table[256])
 	aa_flip_colorize(ramp, true, &img);
 	for (int i = 0; i < 256; i++)
 		table[i] = (struct magma_entry){ (uint32_t)px[4 * i] << 16 | (uint32_t)px[4 * i + 1] << 8 | px[4 * i + 2], i };
-	qsort(table, 256, sizeof table[0], by_rgb);
+}
+
+/* The magma index of each colour, hashed (open addressing, linear probing): a lookup for every pixel of
+ * every map, so cheaper than a search of a sorted table. Entries colliding on one colour would keep the
+ * first index (the 256 colours are distinct). A slot holds rgb | MAGMA_USED, 0 when empty. */
+#define MAGMA_SLOTS 1024
+#define MAGMA_USED 0x1000000u
+struct magma_hash {
+	uint32_t key[MAGMA_SLOTS];
+	int index[MAGMA_SLOTS];
+};
+
+static unsigned magma_slot(uint32_t rgb)
+{
+	return (rgb * 2654435761u) >> 22; /* the top 10 bits: MAGMA_SLOTS */
+}
+
+static void magma_hash_init(struct magma_hash *h, const struct magma_entry table[256])
+{
+	memset(h->key, 0, sizeof h->key);
+	for (int i = 0; i < 256; i++) {
+		unsigned s = magma_slot(table[i].rgb);
+		while (h->key[s] && h->key[s] != (table[i].rgb | MAGMA_USED))
+			s = (s + 1) % MAGMA_SLOTS;
+		if (!h->key[s]) {
+			h->key[s] = table[i].rgb | MAGMA_USED;
+			h->index[s] = table[i].index;
+		}
+	}
+}
+
+/* The colour's magma index, or -1 when it is not a magma colour. */
+static int magma_lookup(const struct magma_hash *h, uint32_t rgb)
+{
+	for (unsigned s = magma_slot(rgb); h->key[s]; s = (s + 1) % MAGMA_SLOTS)
+		if (h->key[s] == (rgb | MAGMA_USED))
+			return h->index[s];
+	return -1;
 }
 
 /* Adds each tile's summed FLIP value of one map to sums; -1 when the map cannot be read or is not WxH. */
-static int add_map(const char *path, int width, int height, int tile, int tiles_x, const struct magma_entry *table,
+static int add_map(const char *path, int width, int height, int tile, int tiles_x, const struct magma_hash *table,
 		   double *sums)
 {
 	struct aa_file_pixels px = { 0 };
@@ -52,13 +85,41 @@ static int add_map(const char *path, int width, int height, int tile, int tiles_
 	const uint8_t *p = px.data;
 	for (int y = 0; y < height; y++)
 		for (int x = 0; x < width; x++, p += px.channels) {
-			const struct magma_entry key = { (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2], 0 };
-			const struct magma_entry *hit = bsearch(&key, table, 256, sizeof table[0], by_rgb);
-			if (hit)
-				sums[(y / tile) * tiles_x + x / tile] += hit->index / 255.0;
+			const int index = magma_lookup(table, (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2]);
+			if (index >= 0)
+				sums[(y / tile) * tiles_x + x / tile] += index / 255.0;
 		}
 	free(px.data);
 	return 0;
+}
+
+/* Frames first + k (k = thread, thread + threads, ... below count): each frame's tile sums, methods in
+ * order, into sums + k * tiles (zeroed). */
+#define REGION_CHUNK 32
+#define REGION_THREADS 4
+struct region_sums {
+	const struct aa_job_result *r;
+	const char *dir;
+	int tile, tiles_x, tiles;
+	const struct magma_hash *table;
+	double *sums;
+	int first, count, thread, threads;
+	bool ok;
+};
+
+static void *region_sums_run(void *arg)
+{
+	struct region_sums *w = arg;
+	const struct aa_job_result *r = w->r;
+	for (int k = w->thread; w->ok && k < w->count; k += w->threads)
+		for (int m = 0; w->ok && m < r->method_count; m++) {
+			char rel[600], path[4096];
+			aa_results_frame_relpath("flip", r->methods[m].label, w->first + k, rel, sizeof rel);
+			snprintf(path, sizeof path, "%s/%s", w->dir, rel);
+			w->ok = add_map(path, r->spec.width, r->spec.height, w->tile, w->tiles_x, w->table,
+					w->sums + (size_t)k * w->tiles) == 0;
+		}
+	return NULL;
 }
 
 /* The tile (x, y, w, h) of the PNG at dir/rel as a data: URL, or null when the file cannot be read or is
@@ -117,28 +178,53 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	if (!r->spec.keep_frames || frames == 0 || width <= 0 || height <= 0 || tile <= 0)
 		return out;
 	const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile, tiles = tiles_x * tiles_y;
-	double *total = calloc((size_t)tiles, sizeof *total), *in_frame = calloc((size_t)tiles, sizeof *in_frame),
-	       *worst = calloc((size_t)tiles, sizeof *worst);
+	double *total = calloc((size_t)tiles, sizeof *total), *worst = calloc((size_t)tiles, sizeof *worst);
 	int *worst_frame = calloc((size_t)tiles, sizeof *worst_frame);
-	struct magma_entry table[256];
-	magma_table(table);
-	bool ok = total && in_frame && worst && worst_frame;
-	for (int f = 0; ok && f < frames; f++) {
-		memset(in_frame, 0, (size_t)tiles * sizeof *in_frame);
-		for (int m = 0; ok && m < r->method_count; m++) {
-			char rel[600], path[4096];
-			aa_results_frame_relpath("flip", r->methods[m].label, f, rel, sizeof rel);
-			snprintf(path, sizeof path, "%s/%s", dir, rel);
-			ok = add_map(path, width, height, tile, tiles_x, table, in_frame) == 0;
+	struct magma_entry colours[256];
+	magma_table(colours);
+	struct magma_hash *table = malloc(sizeof *table);
+	if (table)
+		magma_hash_init(table, colours);
+	/* Frames a chunk at a time, their maps read on threads (decoding the PNGs is most of the cost), each
+	 * frame's sums made as one thread would make them; then added up in frame order, so the regions are
+	 * the same with any number of threads. */
+	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	const int threads = cpus < 1 ? 1 : cpus > REGION_THREADS ? REGION_THREADS : (int)cpus;
+	double *chunk = calloc((size_t)REGION_CHUNK * (size_t)tiles, sizeof *chunk);
+	bool ok = total && worst && worst_frame && table && chunk;
+	for (int f0 = 0; ok && f0 < frames; f0 += REGION_CHUNK) {
+		const int n = frames - f0 < REGION_CHUNK ? frames - f0 : REGION_CHUNK;
+		memset(chunk, 0, (size_t)n * (size_t)tiles * sizeof *chunk);
+		struct region_sums work[REGION_THREADS];
+		pthread_t tids[REGION_THREADS];
+		bool started[REGION_THREADS] = { false };
+		for (int t = 0; t < threads; t++)
+			work[t] = (struct region_sums){ .r = r, .dir = dir, .tile = tile, .tiles_x = tiles_x, .tiles = tiles,
+							.table = table, .sums = chunk, .first = f0, .count = n,
+							.thread = t, .threads = threads, .ok = true };
+		for (int t = 1; t < threads; t++)
+			started[t] = pthread_create(&tids[t], NULL, region_sums_run, &work[t]) == 0;
+		region_sums_run(&work[0]);
+		for (int t = 1; t < threads; t++) {
+			if (started[t])
+				pthread_join(tids[t], NULL);
+			else
+				region_sums_run(&work[t]);
+			ok = ok && work[t].ok;
 		}
-		for (int t = 0; ok && t < tiles; t++) {
-			total[t] += in_frame[t];
-			if (in_frame[t] > worst[t]) {
-				worst[t] = in_frame[t];
-				worst_frame[t] = f;
+		ok = ok && work[0].ok;
+		for (int k = 0; ok && k < n; k++) {
+			const double *in_frame = chunk + (size_t)k * tiles;
+			for (int t = 0; t < tiles; t++) {
+				total[t] += in_frame[t];
+				if (in_frame[t] > worst[t]) {
+					worst[t] = in_frame[t];
+					worst_frame[t] = f0 + k;
+				}
 			}
 		}
 	}
+	free(chunk);
 	/* The count tiles with the largest totals, worst first (tiles are disjoint: no overlap to resolve). */
 	for (int k = 0; ok && k < count; k++) {
 		int best = -1;
@@ -166,8 +252,8 @@ json_t *aa_report_worst_regions(const struct aa_job_result *r, const char *dir, 
 	if (!ok)
 		json_array_clear(out);
 	free(total);
-	free(in_frame);
 	free(worst);
 	free(worst_frame);
+	free(table);
 	return out;
 }

@@ -136,17 +136,26 @@ static unsigned char *read_file(const char *path, size_t *size)
 	return buf;
 }
 
+/* Encoded a chunk at a time into a buffer and written with one fwrite each: a frame's scripts carry
+ * megabytes, which a putc per character makes a visible part of writing the report. */
 static void put_base64(FILE *o, const unsigned char *s, size_t n)
 {
 	static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+	char chunk[4096];
+	size_t used = 0;
 	for (size_t i = 0; i < n; i += 3) {
 		const unsigned v = (unsigned)s[i] << 16 | (i + 1 < n ? (unsigned)s[i + 1] << 8 : 0) |
 				   (i + 2 < n ? s[i + 2] : 0);
-		fputc(b64[v >> 18 & 63], o);
-		fputc(b64[v >> 12 & 63], o);
-		fputc(i + 1 < n ? b64[v >> 6 & 63] : '=', o);
-		fputc(i + 2 < n ? b64[v & 63] : '=', o);
+		chunk[used++] = b64[v >> 18 & 63];
+		chunk[used++] = b64[v >> 12 & 63];
+		chunk[used++] = i + 1 < n ? b64[v >> 6 & 63] : '=';
+		chunk[used++] = i + 2 < n ? b64[v & 63] : '=';
+		if (used == sizeof chunk) {
+			fwrite(chunk, 1, used, o);
+			used = 0;
+		}
 	}
+	fwrite(chunk, 1, used, o);
 }
 
 /* One image of the frame as a quoted data: URL, or null when its file is missing. */

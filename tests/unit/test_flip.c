@@ -319,6 +319,9 @@ static void test_threads_agree(void **state)
 	struct aa_flip_stats st;
 	assert_int_equal(aa_flip_pool(a, 300 * 200, &st), 0);
 	assert_true(st.mean > 0.0 && st.mean < 1.0);
+	/* the mean alone (what a job reports) is the pooled mean to the bit */
+	assert_true(aa_flip_mean(a, 300 * 200) == st.mean);
+	assert_true(aa_flip_mean(a, 0) == 0.0);
 	assert_true(st.min <= st.weighted_q1 && st.weighted_q1 <= st.weighted_median);
 	assert_true(st.weighted_median <= st.weighted_q3 && st.weighted_q3 <= st.max);
 	free(a);

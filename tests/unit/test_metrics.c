@@ -167,6 +167,35 @@ static void test_exceedance_curve(void **state)
 	aa_image_rgba8_free(&test);
 }
 
+/* The curve on 65,536 pixels of many colours against the definition evaluated per pixel and threshold
+ * (luma of each as written, err > i/100): the counts must be the same exactly, whatever tables or
+ * shortcuts the metric uses. */
+static void test_exceedance_curve_by_definition(void **state)
+{
+	(void)state;
+	struct aa_image_rgba8 ref, test;
+	alloc_rgba8(&ref, 256, 256);
+	alloc_rgba8(&test, 256, 256);
+	size_t over[AA_THRESHOLD_COUNT] = { 0 };
+	for (int y = 0; y < 256; y++)
+		for (int x = 0; x < 256; x++) {
+			uint8_t *r = ref.pixels + 4 * (y * 256 + x), *t = test.pixels + 4 * (y * 256 + x);
+			r[0] = (uint8_t)x, r[1] = (uint8_t)y, r[2] = (uint8_t)(x ^ y);
+			t[0] = (uint8_t)y, t[1] = (uint8_t)(x + 3 * y), t[2] = (uint8_t)(255 - x);
+			const double y_ref = (0.2126 * r[0] + 0.7152 * r[1] + 0.0722 * r[2]) / 255.0;
+			const double y_test = (0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]) / 255.0;
+			for (int i = 0; i < AA_THRESHOLD_COUNT; i++)
+				over[i] += fabs(y_test - y_ref) > i / 100.0;
+		}
+	struct aa_metrics m;
+	assert_int_equal(aa_metrics_compare_pixels(&ref, &test, &m, NULL), 0);
+	for (int i = 0; i < AA_THRESHOLD_COUNT; i++)
+		if (m.exceed[i] != (double)over[i] / 65536.0)
+			fail_msg("threshold %d: %.17g, by definition %.17g", i, m.exceed[i], (double)over[i] / 65536.0);
+	aa_image_rgba8_free(&ref);
+	aa_image_rgba8_free(&test);
+}
+
 /* Direct 2D evaluation of one channel's SSIM map mean: 11x11 Gaussian (sigma 1.5) built as an outer
  * product, window border cropped; independent of the separable, blocked, threaded implementation. */
 static double ssim_direct(const struct aa_image_rgba8 *a, const struct aa_image_rgba8 *b, int channel)
@@ -259,6 +288,49 @@ static void test_ssim_channel_matches_rgb(void **state)
 	free(test_d);
 	aa_image_rgba8_free(&ref);
 	aa_image_rgba8_free(&test);
+}
+
+/* SSIM to the last bit on two fixed pairs (gradients, stripes and noise; one of the job's sizes): values
+ * computed by the plain scalar kernels. The vectorised kernels must keep every operation and its order,
+ * so an FMA, a reassociated sum or a changed filter order shows here, where the 1e-12 checks above and
+ * scikit-image's 1e-4 would let it through. */
+static void make_ssim_pair(struct aa_image_rgba8 *a, struct aa_image_rgba8 *b, int w, int h)
+{
+	uint32_t x = 2463534242u;
+	for (int y = 0; y < h; y++)
+		for (int i = 0; i < w; i++) {
+			uint8_t *p = a->pixels + 4 * ((size_t)y * w + i), *q = b->pixels + 4 * ((size_t)y * w + i);
+			for (int c = 0; c < 3; c++) {
+				x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+				int v = (i * 255 / w + y * (c + 1)) % 256;
+				if ((i / 7 + y / 5) % 2) v = 255 - v;
+				p[c] = (uint8_t)v;
+				int n = (int)(x % 41) - 20;
+				int t = v + n;
+				q[c] = (uint8_t)(t < 0 ? 0 : t > 255 ? 255 : t);
+			}
+			p[3] = q[3] = 255;
+		}
+}
+
+static void test_ssim_pinned_bits(void **state)
+{
+	(void)state;
+	const struct { int w, h; double ssim; } pinned[2] = {
+		{ 97, 61, 0x1.d57bf5daa75ddp-1 },
+		{ 640, 360, 0x1.d3d508d828105p-1 },
+	};
+	for (int k = 0; k < 2; k++) {
+		struct aa_image_rgba8 a, b;
+		assert_int_equal(aa_image_rgba8_alloc(&a, pinned[k].w, pinned[k].h), 0);
+		assert_int_equal(aa_image_rgba8_alloc(&b, pinned[k].w, pinned[k].h), 0);
+		make_ssim_pair(&a, &b, pinned[k].w, pinned[k].h);
+		const double v = aa_ssim_rgba8(&a, &b);
+		if (v != pinned[k].ssim)
+			fail_msg("SSIM of the %dx%d pair %a, pinned %a", pinned[k].w, pinned[k].h, v, pinned[k].ssim);
+		aa_image_rgba8_free(&a);
+		aa_image_rgba8_free(&b);
+	}
 }
 
 static void test_ssim_small_images(void **state)
@@ -570,9 +642,11 @@ int main(void)
 		cmocka_unit_test(test_identical_images),
 		cmocka_unit_test(test_constant_images),
 		cmocka_unit_test(test_exceedance_curve),
+		cmocka_unit_test(test_exceedance_curve_by_definition),
 		cmocka_unit_test(test_ssim_matches_direct_evaluation),
 		cmocka_unit_test(test_ssim_channel_matches_rgb),
 		cmocka_unit_test(test_ssim_small_images),
+		cmocka_unit_test(test_ssim_pinned_bits),
 		cmocka_unit_test(test_size_mismatch),
 		cmocka_unit_test(test_linear_psnr),
 		cmocka_unit_test(test_psnr_from_mse),

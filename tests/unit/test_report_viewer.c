@@ -227,6 +227,16 @@ static void test_viewer_frames(void **state)
 	struct aa_error err = { 0 };
 	for (int f = 0; f < 2; f++) {
 		write_png(dir, "frames", "reference", f, (uint8_t)(10 + f));
+		if (f == 1) { /* frame 1's reference is noise, some 20 KB of PNG: its payload spans many chunks */
+			uint8_t noise[80 * 60 * 4];
+			uint32_t x = 12345;
+			for (size_t i = 0; i < sizeof noise; i++) {
+				x = x * 1664525u + 1013904223u;
+				noise[i] = (uint8_t)(x >> 24);
+			}
+			const struct aa_image_rgba8 img = { .width = 80, .height = 60, .pixels = noise };
+			assert_int_equal(aa_results_write_image(dir, "frames/reference/0001.png", &img, &err), 0);
+		}
 		write_png(dir, "frames", r->methods[0].label, f, (uint8_t)(20 + f));
 		write_png(dir, "flip", r->methods[0].label, f, 0);
 		write_png(dir, "frames", r->methods[1].label, f, (uint8_t)(30 + f));
@@ -246,6 +256,7 @@ static void test_viewer_frames(void **state)
 	char *png = decode_base64(b, (size_t)(end - b), &n);
 	snprintf(path, sizeof path, "%s/frames/reference/0001.png", dir);
 	char *file = read_all(path, &file_n);
+	assert_true(file_n > 10000);
 	assert_int_equal(n, file_n);
 	assert_memory_equal(png, file, n);
 	free(png);
@@ -334,6 +345,75 @@ static void test_worst_regions(void **state)
 	free_result(r);
 }
 
+/* Every one of the 256 magma colours is read back as its own index: a tile holding index i at its pixel
+ * i sums to 0 + 1/255 + ... + 255/255 = 128; a colour read wrongly or not at all moves the mean. */
+static void test_worst_regions_every_colour(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = make_result(1);
+	char *dir = make_tmpdir();
+	float map[40 * 20] = { 0 };
+	for (int i = 0; i < 256; i++)
+		map[(i / 16) * 40 + i % 16] = (float)i / 255.0f;
+	uint8_t px[40 * 20 * 4];
+	struct aa_image_rgba8 img = { .width = 40, .height = 20, .pixels = px };
+	aa_flip_colorize(map, true, &img);
+	char rel[300];
+	struct aa_error err = { 0 };
+	aa_results_frame_relpath("flip", r->methods[0].label, 0, rel, sizeof rel);
+	assert_int_equal(aa_results_write_image(dir, rel, &img, &err), 0);
+	write_flip(dir, r->methods[1].label, 0, 0, 0, 0, 0, 0.0f);
+	json_t *g = aa_report_worst_regions(r, dir, 16, 1);
+	assert_int_equal(json_array_size(g), 1);
+	json_t *e = json_array_get(g, 0);
+	assert_int_equal(json_integer_value(json_object_get(e, "x")), 0);
+	assert_int_equal(json_integer_value(json_object_get(e, "y")), 0);
+	/* 128 over 256 pixels, 2 methods, 1 frame */
+	const double mean = json_real_value(json_object_get(e, "flip_mean"));
+	if (fabs(mean - 0.25) > 1e-9)
+		fail_msg("flip_mean %.12f, want 0.25", mean);
+	json_decref(g);
+	remove_tree(dir);
+	free(dir);
+	free_result(r);
+}
+
+/* More frames than the report reads at once (32): ordinals past the first chunk, and a tie across
+ * chunks shown at its first frame. */
+static void test_worst_regions_many_frames(void **state)
+{
+	(void)state;
+	struct aa_job_result *r = make_result(40);
+	char *dir = make_tmpdir();
+	for (int f = 0; f < 40; f++) {
+		if (f == 33)
+			write_flip(dir, r->methods[0].label, f, 16, 0, 32, 16, 0.8f);
+		else if (f == 5 || f == 37)
+			write_flip(dir, r->methods[0].label, f, 0, 0, 16, 16, 0.2f);
+		else
+			write_flip(dir, r->methods[0].label, f, 0, 0, 0, 0, 0.0f);
+		write_flip(dir, r->methods[1].label, f, 0, 0, 0, 0, 0.0f);
+	}
+	json_t *g = aa_report_worst_regions(r, dir, 16, 6);
+	assert_int_equal(json_array_size(g), 2);
+	const int want[2][3] = { { 16, 0, 33 }, { 0, 0, 5 } };
+	for (int k = 0; k < 2; k++) {
+		json_t *e = json_array_get(g, (size_t)k);
+		if (json_integer_value(json_object_get(e, "x")) != want[k][0] ||
+		    json_integer_value(json_object_get(e, "y")) != want[k][1] ||
+		    json_integer_value(json_object_get(e, "ordinal")) != want[k][2])
+			fail_msg("region %d at (%lld, %lld) frame %lld, want (%d, %d) frame %d", k,
+				 (long long)json_integer_value(json_object_get(e, "x")),
+				 (long long)json_integer_value(json_object_get(e, "y")),
+				 (long long)json_integer_value(json_object_get(e, "ordinal")), want[k][0], want[k][1],
+				 want[k][2]);
+	}
+	json_decref(g);
+	remove_tree(dir);
+	free(dir);
+	free_result(r);
+}
+
 static void test_exr_event(void **state)
 {
 	(void)state;
@@ -412,6 +492,8 @@ int main(void)
 		cmocka_unit_test(test_viewer_data),
 		cmocka_unit_test(test_viewer_frames),
 		cmocka_unit_test(test_worst_regions),
+		cmocka_unit_test(test_worst_regions_every_colour),
+		cmocka_unit_test(test_worst_regions_many_frames),
 		cmocka_unit_test(test_exr_event),
 		cmocka_unit_test(test_place_labels),
 	};
