@@ -25,7 +25,7 @@ extern const char aa_run_help[], aa_submit_help[], aa_watch_help[], aa_status_he
 	"  --methods LIST          comma-separated methods, e.g. none,fxaa,smaa (default none,ssaa:16;\n" \
 	"                          see 'aalab methods'; user:file=FILE.json for your own). Values joined\n" \
 	"                          by '|' sweep a parameter, one method per configuration:\n" \
-	"                          fxaa:preset=10|20|39, msaa:2|4|8 (at most 16 methods in all)\n" \
+	"                          fxaa:preset=10|20|39, msaa:2|4|8 (at most 24 methods in all)\n" \
 	"  --frames N              frames to render (default 1)\n" \
 	"  --first-frame N         frame index on the path to start at (default 0)\n" \
 	"  --size WxH              image size (default 640x360)\n" \

@@ -70,7 +70,8 @@ AALAB_SUITE_DIR="$top_srcdir/suites" expect_status 0 "aalab suites" -- "$AALAB" 
 import json, sys
 s = {x["name"]: x for x in json.load(open(sys.argv[1]))}
 assert all("error" not in x for x in s.values()), s
-assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 16) and s["full"]["cases"] == 16 and s["hard"]["cases"] == 7, s
+assert (s["smoke"]["cases"], s["smoke"]["methods"]) == (6, 18) and (s["full"]["cases"], s["full"]["methods"]) == (16, 23), s
+assert (s["hard"]["cases"], s["hard-cases"]["cases"], s["hard-cases"]["methods"]) == (7, 16, 20), s
 ' "$TMP/out" && pass "the shipped suites (smoke, full, hard) are valid jobs" || { fail "shipped suites"; cat "$TMP/out"; }
 # a suite of the user's with a user method is listed as valid (its method file read as aalab run reads it)
 mkdir -p "$TMP/user-suites"

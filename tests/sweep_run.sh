@@ -59,6 +59,33 @@ assert "msaa:8" in fam[1]["front"], fam[1]
 print("fxaa front:", fam[0]["front"], "msaa front:", fam[1]["front"])
 PY
 
+# report.html draws what the verdict says: each family's line through its configurations' points in
+# ascending cost, its legend entry with its front, the verdict card's family line, and the front's staircase
+/usr/bin/python3 - "$TMP/a/results.json" "$TMP/a/report.html" <<'PY' && pass "report.html: a line per family through its points by cost, its front in the legend" || fail "report families"
+import html, json, re, sys
+r = json.load(open(sys.argv[1]))
+page = open(sys.argv[2]).read()
+at = {html.unescape(l): (float(x), float(y)) for x, y, l in
+      re.findall(r'<circle class="method" cx="([-0-9.]+)" cy="([-0-9.]+)"[^>]*><title>([^<]*?): [-0-9.]+ ms', page)}
+assert len(at) == len(r["methods"]), sorted(at)
+fam = r["verdict"]["families"]
+lines = dict(re.findall(r'<polyline class="family-line" data-family="([^"]+)"[^>]* points="([^"]*)"', page))
+assert sorted(lines) == sorted(f["family"] for f in fam), (lines, fam)
+for f in fam:
+    pts = [tuple(float(v) for v in p.split(",")) for p in lines[f["family"]].split()]
+    assert pts == [at[l] for l in f["methods"]], (f["family"], pts, [at[l] for l in f["methods"]])
+    li = re.search(r'<li data-family="%s">(.*?)</li>' % f["family"], page).group(1)
+    assert html.unescape(re.sub("<[^>]+>", "", li)).endswith(
+        " \u2192 ".join(f["methods"]) + " (front: " + ", ".join(f["front"]) + ")"), li
+    front = f["front"]
+    said = ", ".join(front[:-1]) + " and " + front[-1] if len(front) > 1 else front[0]
+    assert "<li>%s family front: %s (of %d configurations" % (f["family"], said, len(f["methods"])) in page, f
+front = sorted((at[l] for l in r["verdict"]["front"]), key=lambda p: p[0])
+if len(front) > 1:
+    d = re.search(r'<path class="front-line" d="([^"]+)"', page).group(1)
+    assert d.startswith("M%.1f %.1f" % front[0]) and d.endswith("H%.1fV%.1f" % front[-1]), (d, front)
+PY
+
 # the list form of a job file is the same job: same hash, same methods
 cat >"$TMP/job.json" <<'EOF'
 {"scene": "thin-wires", "size": "96x54", "reference": {"samples": 8},

@@ -12,6 +12,7 @@
 #include "results/front.h"
 #include "results/warnings.h"
 #include "run/job_spec.h"
+#include "util/json_text.h"
 
 
 /* The SVG coordinate box of every chart and its plot margins (left, right, top, bottom). */
@@ -261,6 +262,100 @@ void aa_report_place_labels(struct aa_point_label *l, const double *px, const do
 	}
 }
 
+/* The plotted point of a label, or -1 (k indexes plotted[], px[], py[]). */
+static int plotted_point(const struct aa_job_result *r, const int *plotted, int n, const char *label)
+{
+	for (int k = 0; label && k < n; k++)
+		if (!strcmp(r->methods[plotted[k]].label, label))
+			return k;
+	return -1;
+}
+
+/* Under the points: the front (verdict.front) as a grey staircase, cheapest first, and each method
+ * family (verdict.families) as a line through its configurations by ascending cost, in the colour of its
+ * first method in job order, as the dashboard's case view draws them (web/suite.js). */
+static void draw_front_and_families(FILE *o, const struct aa_job_result *r, const json_t *verdict, const int *plotted,
+				    const double *px, const double *py, int n)
+{
+	int front[AA_MAX_METHODS], nf = 0;
+	json_t *v;
+	size_t i, j;
+	json_array_foreach(json_object_get(verdict, "front"), i, v) {
+		const int k = plotted_point(r, plotted, n, json_string_value(v));
+		if (k >= 0 && nf < AA_MAX_METHODS)
+			front[nf++] = k;
+	}
+	for (int a = 1; a < nf; a++) /* cheapest (leftmost) first */
+		for (int b = a; b > 0 && px[front[b]] < px[front[b - 1]]; b--) {
+			const int t = front[b];
+			front[b] = front[b - 1];
+			front[b - 1] = t;
+		}
+	if (nf > 1) {
+		fprintf(o, "<path class=\"front-line\" d=\"M%.1f %.1f", px[front[0]], py[front[0]]);
+		for (int a = 1; a < nf; a++)
+			fprintf(o, "H%.1fV%.1f", px[front[a]], py[front[a]]);
+		fputs("\"/>\n", o);
+	}
+	json_t *f;
+	json_array_foreach(json_object_get(verdict, "families"), i, f) {
+		int first = AA_MAX_METHODS, count = 0;
+		json_array_foreach(json_object_get(f, "methods"), j, v) {
+			const int k = plotted_point(r, plotted, n, json_string_value(v));
+			if (k >= 0) {
+				count++;
+				first = plotted[k] < first ? plotted[k] : first;
+			}
+		}
+		if (count < 2)
+			continue;
+		fputs("<polyline class=\"family-line\" data-family=\"", o);
+		aa_report_esc(o, aa_json_string(f, "family"));
+		fprintf(o, "\" stroke=\"%s\" points=\"", aa_report_color(first));
+		json_array_foreach(json_object_get(f, "methods"), j, v) {
+			const int k = plotted_point(r, plotted, n, json_string_value(v));
+			if (k >= 0)
+				fprintf(o, "%.1f,%.1f ", px[k], py[k]);
+		}
+		fputs("\"/>\n", o);
+	}
+}
+
+/* Below the chart: one entry per family, its configurations by cost and its front (verdict.families). */
+static void family_legend(FILE *o, const struct aa_job_result *r, const json_t *verdict)
+{
+	json_t *f, *v;
+	size_t i, j;
+	if (!json_array_size(json_object_get(verdict, "families")))
+		return;
+	fputs("<ul class=\"legend family-legend\">", o);
+	json_array_foreach(json_object_get(verdict, "families"), i, f) {
+		int first = 0;
+		for (int m = r->method_count - 1; m >= 0; m--) /* the family's first method in job order */
+			json_array_foreach(json_object_get(f, "methods"), j, v)
+				if (!strcmp(r->methods[m].label, json_string_value(v) ? json_string_value(v) : ""))
+					first = m;
+		fputs("<li data-family=\"", o);
+		aa_report_esc(o, aa_json_string(f, "family"));
+		fprintf(o, "\"><span class=\"family-swatch\" style=\"border-color:%s\"></span>", aa_report_color(first));
+		aa_report_esc(o, aa_json_string(f, "family"));
+		fputs(": ", o);
+		json_array_foreach(json_object_get(f, "methods"), j, v) {
+			fputs(j ? " &rarr; " : "", o);
+			aa_report_esc(o, json_string_value(v) ? json_string_value(v) : "");
+		}
+		fputs(" (front: ", o);
+		if (!json_array_size(json_object_get(f, "front")))
+			fputs("none, its costs are not ranked", o);
+		json_array_foreach(json_object_get(f, "front"), j, v) {
+			fputs(j ? ", " : "", o);
+			aa_report_esc(o, json_string_value(v) ? json_string_value(v) : "");
+		}
+		fputs(")</li>", o);
+	}
+	fputs("</ul>\n", o);
+}
+
 void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const struct aa_method_summary *sum,
 				const json_t *verdict)
 {
@@ -309,6 +404,7 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 	}
 	const double plot[4] = { ML + 2, MT + 2, CW - MR - 2, CH - MB - 2 };
 	aa_report_place_labels(labels, px, py, n, plot);
+	draw_front_and_families(o, r, verdict, plotted, px, py, n);
 	for (int k = 0; k < n; k++) {
 		const int i = plotted[k];
 		const double x = px[k], y = py[k];
@@ -340,10 +436,13 @@ void aa_report_chart_cost_accuracy(FILE *o, const struct aa_job_result *r, const
 		aa_report_esc(o, r->methods[i].label);
 		fputs("</text>\n", o);
 	}
-	fputs("</svg>\n<figcaption>Each point is one method: further left is cheaper, higher is closer to the "
-	      "reference. Bars span the 10th to 90th percentile of the GPU time over every timed render; a ring marks "
-	      "a method on the front (the verdict above).</figcaption>\n"
-	      "</figure>\n", o);
+	fputs("</svg>\n", o);
+	family_legend(o, r, verdict);
+	fprintf(o, "<figcaption>Each point is one method: further left is cheaper, higher is closer to the "
+		   "reference. Bars span the 10th to 90th percentile of the GPU time over every timed render; a ring marks "
+		   "a method on the front (the verdict above), joined by the grey staircase%s</figcaption>\n"
+		   "</figure>\n", json_array_size(json_object_get(verdict, "families"))
+		? "; a coloured line joins each method family's configurations by cost." : ".");
 }
 
 /* Share of pixels whose luminance error exceeds each threshold, log scale: the tail where methods differ. */

@@ -6,6 +6,31 @@
 #include "report/report.h"
 #include "util/json_text.h"
 
+/* Each method family's front (verdict.families), worded as the terminal words it (client/verdict_lines.c). */
+static void write_families(FILE *o, const json_t *verdict)
+{
+	json_t *f, *label;
+	size_t i, j;
+	if (!json_array_size(json_object_get(verdict, "families")))
+		return;
+	fputs("<ul class=\"families\">\n", o);
+	json_array_foreach(json_object_get(verdict, "families"), i, f) {
+		json_t *front = json_object_get(f, "front");
+		const size_t n = json_array_size(front);
+		fputs("<li>", o);
+		aa_report_esc(o, aa_json_string(f, "family"));
+		fputs(" family front: ", o);
+		if (n == 0)
+			fputs("none, its costs are not ranked", o);
+		json_array_foreach(front, j, label) {
+			fputs(j == 0 ? "" : j + 1 == n ? " and " : ", ", o);
+			aa_report_esc(o, json_string_value(label) ? json_string_value(label) : "");
+		}
+		fprintf(o, " (of %zu configurations, cheapest first)</li>\n", json_array_size(json_object_get(f, "methods")));
+	}
+	fputs("</ul>\n", o);
+}
+
 void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warnings)
 {
 	size_t i;
@@ -23,6 +48,7 @@ void aa_report_write_verdict(FILE *o, const json_t *verdict, const json_t *warni
 			}
 			fputs("</ul>\n", o);
 		}
+		write_families(o, verdict);
 		fprintf(o, "<p class=\"note\">The front: the methods no other method beats, that is, none is at most as "
 			   "costly and at least as good in PSNR and FLIP. Cost is the GPU time over the timed renders; one "
 			   "is lower than another only when their 10th-90th percentile spreads are apart, and costs whose "

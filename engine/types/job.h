@@ -13,7 +13,7 @@
 #include "types/method.h"
 #include "metrics/metrics.h"
 
-#define AA_MAX_METHODS 16
+#define AA_MAX_METHODS 24
 #define AA_MAX_PASSES 16
 #define AA_MAX_INVALID_TARGETS 8 /* per frame, the intermediates with invalid texels that are named */
 #define AA_MAX_MEMORY_ITEMS 24

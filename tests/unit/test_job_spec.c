@@ -214,8 +214,9 @@ static const struct bad_case bad_cases[] = {
 	{ "{\"reference\": {\"samples\": 16, \"target_psnr\": 45}}", AA_ERR_INVALID, "reference.target_psnr", "applies only with \"samples\": \"auto\"" },
 	{ "{\"methods\": []}", AA_ERR_INVALID, "methods", "methods: the list is empty" },
 	{ "{\"methods\": \"ssaa\"}", AA_ERR_INVALID, "methods", "expected an array of methods" },
-	{ "{\"methods\": [\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\"]}",
-	  AA_ERR_LIMIT, "methods", "17 methods; a job compares at most 16" },
+	{ "{\"methods\": [\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\","
+	  "\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\",\"n\"]}",
+	  AA_ERR_LIMIT, "methods", "25 methods; a job compares at most 24" },
 	{ "{\"methods\": [\"nosuch-aa\"]}", AA_ERR_NOT_FOUND, "methods[0]",
 	  "methods[0]: unknown method \"nosuch-aa\"; known methods: " },
 	{ "{\"methods\": [\"none\", \"ssaa:7\"]}", AA_ERR_INVALID, "methods[1]",
