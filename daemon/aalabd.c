@@ -417,6 +417,7 @@ int main(int argc, char **argv)
 		/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
 		 * engine belongs to the worker thread from here on) */
 		aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
+		aa_engine_set_interrupt(store->engine, &store->interrupt); /* cancel and shutdown (worker.c) */
 		if (references[0] &&
 		    aa_engine_set_reference_cache(store->engine, references, d->cfg.reference_cache_bytes, &aerr)) {
 			fprintf(stderr, "aalabd: %s: %s\n", aerr.path, aerr.message);

@@ -472,6 +472,8 @@ int store_cancel(struct store *s, struct job *job, struct aa_error *err)
 		return aa_error_set(err, AA_ERR_INVALID, "job", "job %s is already %s", job->id,
 				    job_state_name(job->state));
 	job->cancel = true;
+	if (job == s->running)
+		atomic_store(&s->interrupt, 1); /* the engine stops at its next piece of GPU work */
 	if (job->state == JOB_QUEUED) {
 		job->state = JOB_CANCELLED;
 		job->finished_at = now_s();

@@ -72,6 +72,7 @@ struct store {
 	bool worker_stop;         /* finish the running job, take no new one */
 	bool worker_exited;
 	struct job *running;      /* held by the worker while it runs the job (job_hold) */
+	atomic_int interrupt;     /* the running job must stop: its engine checks between pieces of GPU work */
 	struct aa_engine *engine;
 	struct scene_cache *scenes;
 	struct loop *loop;        /* woken after every change a client may be waiting for */

@@ -332,8 +332,13 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	 * worker process), ready before anyone can see the job done */
 	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
 	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !out->failed_writes);
-	if (failed)
-		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
+	pthread_mutex_lock(&s->lock);
+	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
+	pthread_mutex_unlock(&s->lock);
+	/* half a result is no result (it also frees the space it took); an interrupted job runs again from
+	 * its start, so its frames so far go too */
+	if (failed || requeue)
+		store_remove_partial(s, job);
 	if (run->log)
 		fflush(run->log);
 	/* measured before the state changes, so that status never shows a finished job with bytes 0; the
@@ -341,7 +346,6 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	uint64_t bytes_so_far = store_measure(s, job);
 	pthread_mutex_lock(&s->lock);
 	job->bytes = bytes_so_far;
-	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
 	json_t *ev;
 	enum job_state final_state;
 	if (rc == 0) {
@@ -472,6 +476,7 @@ static void *worker_main(void *arg)
 		job->log_complete = false;
 		job_hold(job); /* until worker_run_end: nothing may free it while it runs (jobs.h) */
 		s->running = job;
+		atomic_store(&s->interrupt, 0);
 		store_save(s, job);
 		pthread_mutex_unlock(&s->lock);
 		loop_wake(s->loop);
@@ -504,6 +509,7 @@ void worker_request_stop(struct store *s, bool cancel_running)
 	if (cancel_running && s->running) {
 		s->running->cancel = true;
 		s->running->requeue = true;
+		atomic_store(&s->interrupt, 1);
 	}
 	pthread_cond_signal(&s->work);
 	pthread_mutex_unlock(&s->lock);
