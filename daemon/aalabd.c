@@ -257,6 +257,14 @@ struct runtime {
 	double last_watchdog;
 };
 
+static void check_drained(struct daemon *d);
+
+static void on_drain_tick(struct loop *loop, void *data)
+{
+	(void)loop;
+	check_drained(data);
+}
+
 static void start_drain(struct daemon *d)
 {
 	d->draining = true;
@@ -272,6 +280,8 @@ static void start_drain(struct daemon *d)
 	}
 	d->listener_count = 0;
 	worker_request_stop(d->store, d->cfg.drain_timeout_s == 0);
+	/* the drain timeout is met within 0.1 s, not at the next 1 s tick (aalabd(8), STOPPING A JOB) */
+	loop_every(d->loop, 100, on_drain_tick, d);
 }
 
 static void check_drained(struct daemon *d)
