@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "client.h"
+#include "util/file_open.h"
 
 struct aa_conn {
 	int fd;
@@ -94,12 +95,15 @@ static void read_token(char *out, size_t size, char *source, size_t source_size)
 		snprintf(out, size, "%s", t);
 		snprintf(source, source_size, "$AALAB_TOKEN");
 	} else if (file) {
-		FILE *f = fopen(file, "r");
+		struct aa_error fe = {0};
+		FILE *f = aa_file_fopen_regular(file, "", &fe); /* never blocks on a FIFO */
 		if (f && fgets(out, (int)size, f))
 			out[strcspn(out, "\r\n")] = 0;
 		if (f)
 			fclose(f);
-		snprintf(source, source_size, "%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file);
+		snprintf(source, source_size, "%s%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file,
+			 fe.code == AA_ERR_INVALID ? ", which is not a regular file (a FIFO, socket or device) and was not "
+			 "read" : "");
 	}
 }
 

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "daemon.h"
+#include "util/file_open.h"
 #include "jobs.h"
 #include "worker.h"
 
@@ -100,17 +101,22 @@ static int read_token(struct daemon *d, char *err, size_t err_size)
 	}
 	char token[sizeof d->token] = "";
 	struct stat st;
-	FILE *f = fopen(d->cfg.token_file, "r");
-	if (!f || fstat(fileno(f), &st) < 0) {
-		snprintf(err, err_size, "token-file: cannot read %s: %s", d->cfg.token_file, strerror(errno));
-		if (f)
-			fclose(f);
+	struct aa_error aerr = {0};
+	/* opened without blocking: a FIFO here must not freeze the loop on a reload (SIGHUP) */
+	FILE *f = aa_file_fopen_regular(d->cfg.token_file, "token-file", &aerr);
+	if (!f) {
+		snprintf(err, err_size, "%s", aerr.message);
 		return -1;
 	}
-	if (!S_ISREG(st.st_mode) || (st.st_mode & 077)) {
-		snprintf(err, err_size, "token-file: %.400s is %s (mode %03o); it must be a file only its owner can "
-			 "read: chmod 600 %.400s", d->cfg.token_file, S_ISREG(st.st_mode) ? "readable or writable by others" :
-			 "not a regular file", (unsigned)(st.st_mode & 0777), d->cfg.token_file);
+	if (fstat(fileno(f), &st) < 0) {
+		snprintf(err, err_size, "token-file: cannot read %s: %s", d->cfg.token_file, strerror(errno));
+		fclose(f);
+		return -1;
+	}
+	if (st.st_mode & 077) {
+		snprintf(err, err_size, "token-file: %.400s is readable or writable by others (mode %03o); it must be a "
+			 "file only its owner can read: chmod 600 %.400s", d->cfg.token_file, (unsigned)(st.st_mode & 0777),
+			 d->cfg.token_file);
 		fclose(f);
 		return -1;
 	}

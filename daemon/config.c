@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "daemon.h"
+#include "util/file_open.h"
 #include "reference/reference_cache.h"
 
 void config_defaults(struct config *c)
@@ -153,9 +154,10 @@ static char *trim(char *s)
 
 int config_load(struct config *c, const char *path, char *err, size_t err_size)
 {
-	FILE *f = fopen(path, "r");
+	struct aa_error aerr = {0};
+	FILE *f = aa_file_fopen_regular(path, "config", &aerr); /* a FIFO would block the reload */
 	if (!f) {
-		snprintf(err, err_size, "config: cannot open %s: %s", path, strerror(errno));
+		snprintf(err, err_size, "%s", aerr.message);
 		return -1;
 	}
 	char line[2048], msg[512];

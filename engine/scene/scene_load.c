@@ -758,7 +758,12 @@ int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa
 	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
 				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
-	json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
+	uint8_t *text;
+	size_t size;
+	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, err)) /* never blocks on a FIFO */
+		return -1;
+	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
+	free(text);
 	if (!root)
 		return json_error(err, path, &je);
 	struct sj s;
