@@ -359,6 +359,12 @@ int main(int argc, char **argv)
 	}
 	for (int i = 1; i < argc; i++)
 		if (!strcmp(argv[i], "--check")) {
+			/* a daemon already on the state folder, as start-up would find it */
+			int lock_fd;
+			if (store_lock_state_dir(d->cfg.state_dir, false, &lock_fd, err, sizeof err)) {
+				fprintf(stderr, "aalabd: %s\n", err);
+				return 2;
+			}
 			/* the device start-up would open (--device), opened and closed again */
 			struct aa_engine *engine = NULL;
 			struct aa_error aerr = {0};
@@ -393,6 +399,14 @@ int main(int argc, char **argv)
 	store->max_interruptions = d->cfg.max_job_interruptions;
 	store->render_nice_value = render_nice_value(d->cfg.render_nice);
 	int status = 1;
+	/* one daemon per state folder, before anything in it is read or written; held until exit */
+	int lock_fd;
+	if (store_lock_state_dir(d->cfg.state_dir, true, &lock_fd, err, sizeof err)) {
+		fprintf(stderr, "aalabd: %s\n", err);
+		free(store);
+		loop_destroy(d->loop);
+		return 2;
+	}
 	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
 		free(store);

@@ -109,6 +109,11 @@ bool job_state_known(const char *name);
 /* Opens STATE_DIR (creating it), reads every job back: queued jobs stay queued, jobs that were running
  * when the daemon died are queued again to re-run from the start. */
 int store_open(struct store *s, const char *state_dir, char *err, size_t err_size);
+/* One daemon per state folder: an exclusive flock on STATE_DIR/aalabd.lock, which holds the holder's PID.
+ * hold: creates the folder and the file and keeps the lock (*fd) for the process's life (the kernel lets it
+ * go however the process ends); else (--check) only tries it and lets go. -1 with err naming the folder
+ * and the PID that holds it when another process has it. */
+int store_lock_state_dir(const char *state_dir, bool hold, int *fd, char *err, size_t err_size);
 void store_close(struct store *s);
 /* Adds a queued job (persisted before it is visible); the caller holds no lock. The job takes its own
  * references to the spec's user methods; their files (method_files, or NULL) are kept beside job.json
