@@ -11,6 +11,7 @@
 
 #include "client.h"
 #include "util/file_open.h"
+#include "util/socket_path.h"
 
 struct aa_conn {
 	int fd;
@@ -18,17 +19,20 @@ struct aa_conn {
 	size_t len, cap;
 };
 
-/* The default: $AALAB_CONNECT, else $XDG_RUNTIME_DIR/aalabd.sock, else the system service's socket. */
+/* The default: $AALAB_CONNECT, else the socket aalabd listens on when not told (util/socket_path.h:
+ * $XDG_RUNTIME_DIR/aalabd.sock, else /tmp/aalabd-UID/aalabd.sock in a folder that is this user's alone)
+ * when it is there, else the system service's socket. */
 static void default_address(char *out, size_t size)
 {
-	const char *env = getenv("AALAB_CONNECT"), *rt = getenv("XDG_RUNTIME_DIR");
+	const char *env = getenv("AALAB_CONNECT");
+	char path[1024];
+	struct aa_error e = {0};
+	aa_socket_default_path(path, sizeof path);
 	if (env && *env)
 		snprintf(out, size, "%s", env);
-	else if (rt && *rt && access(rt, F_OK) == 0) {
-		snprintf(out, size, "unix:%s/aalabd.sock", rt);
-		if (access(out + 5, F_OK) != 0)
-			snprintf(out, size, "unix:/run/aalabd/aalabd.sock");
-	} else
+	else if (access(path, F_OK) == 0 && aa_socket_dir_check(path, false, &e) == 0)
+		snprintf(out, size, "unix:%s", path);
+	else
 		snprintf(out, size, "unix:/run/aalabd/aalabd.sock");
 }
 

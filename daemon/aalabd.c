@@ -14,6 +14,7 @@
 
 #include "daemon.h"
 #include "util/file_open.h"
+#include "util/socket_path.h"
 #include "jobs.h"
 #include "worker.h"
 
@@ -33,9 +34,10 @@ static const char usage[] =
 	"usage: aalabd [--socket PATH] [--state-dir DIR] [--tcp HOST:PORT --token-file FILE] [--http HOST:PORT]\n"
 	"              [--config FILE] [--web-dir DIR] [--device SEL] [--OPTION VALUE ...] [--verbose] [--check]\n"
 	"\n"
-	"Serves aalab jobs over a Unix socket (default $XDG_RUNTIME_DIR/aalabd.sock), optionally TCP with a\n"
-	"bearer token and HTTP for dashboards. Every key of the configuration file is also an option\n"
-	"(--max-connections 64, --retention-jobs 100, ...). --check only checks the configuration.\n"
+	"Serves aalab jobs over a Unix socket (default $XDG_RUNTIME_DIR/aalabd.sock, without it\n"
+	"/tmp/aalabd-UID/aalabd.sock), optionally TCP with a bearer token and HTTP for dashboards. Every key\n"
+	"of the configuration file is also an option (--max-connections 64, --retention-jobs 100, ...).\n"
+	"--check only checks the configuration.\n"
 	"See aalabd(8) and docs/protocol.md.\n";
 
 void daemon_log(struct daemon *d, int level, const char *fmt, ...)
@@ -188,21 +190,31 @@ static int open_listeners(struct daemon *d, int argc, char **argv, char *err, si
 		socket_flag |= !strcmp(argv[i], "--socket");
 	/* with socket activation, only the sockets systemd passed (unless --socket is given too) */
 	if (n == 0 || socket_flag) {
+		struct aa_error serr = {0};
+		if (aa_socket_dir_check(d->cfg.socket_path, true, &serr)) { /* /tmp/aalabd-UID: 0700, ours */
+			snprintf(err, err_size, "%s", serr.message);
+			return -1;
+		}
 		int fd = listen_unix(d->cfg.socket_path, err, err_size);
 		if (fd < 0)
 			return -1;
 		add_listener(d, fd, CONN_PROTOCOL, false, d->cfg.socket_path);
 	}
+	char why[600];
 	if (d->cfg.tcp[0]) {
-		int fd = listen_tcp(d->cfg.tcp, err, err_size);
-		if (fd < 0)
+		int fd = listen_tcp(d->cfg.tcp, why, sizeof why);
+		if (fd < 0) {
+			snprintf(err, err_size, "tcp: %s", why);
 			return -1;
+		}
 		add_listener(d, fd, CONN_PROTOCOL, true, d->cfg.tcp);
 	}
 	if (d->cfg.http[0]) {
-		int fd = listen_tcp(d->cfg.http, err, err_size);
-		if (fd < 0)
+		int fd = listen_tcp(d->cfg.http, why, sizeof why);
+		if (fd < 0) {
+			snprintf(err, err_size, "http: %s", why);
 			return -1;
+		}
 		/* a dashboard on loopback needs no token; elsewhere it needs the same bearer token */
 		add_listener(d, fd, CONN_HTTP, !address_is_loopback(d->cfg.http), d->cfg.http);
 	}
@@ -365,6 +377,18 @@ int main(int argc, char **argv)
 				fprintf(stderr, "aalabd: %s\n", err);
 				return 2;
 			}
+			/* every listener start-up would open, bound and closed again (a port another program holds,
+			 * a socket folder that cannot be made) */
+			if (open_listeners(d, argc, argv, err, sizeof err)) {
+				fprintf(stderr, "aalabd: %s\n", err);
+				return 2;
+			}
+			for (int l = 0; l < d->listener_count; l++) {
+				close(d->listeners[l].fd);
+				if (!d->listeners[l].from_systemd && d->listeners[l].kind == CONN_PROTOCOL && !d->listeners[l].tcp)
+					unlink(d->listeners[l].name);
+			}
+			d->listener_count = 0;
 			/* the device start-up would open (--device), opened and closed again */
 			struct aa_engine *engine = NULL;
 			struct aa_error aerr = {0};
