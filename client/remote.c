@@ -105,6 +105,11 @@ static void read_token(char *out, size_t size, char *source, size_t source_size)
 			out[strcspn(out, "\r\n")] = 0;
 		if (f)
 			fclose(f);
+		/* spaces and tabs around the token do not count, as for aalabd's token-file */
+		size_t start = strspn(out, " \t"), len = strlen(out + start);
+		memmove(out, out + start, len + 1);
+		while (len > 0 && (out[len - 1] == ' ' || out[len - 1] == '\t'))
+			out[--len] = 0;
 		snprintf(source, source_size, "%s%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file,
 			 fe.code == AA_ERR_INVALID ? ", which is not a regular file (a FIFO, socket or device) and was not "
 			 "read" : "");

@@ -122,12 +122,33 @@ static int read_token(struct daemon *d, char *err, size_t err_size)
 		fclose(f);
 		return -1;
 	}
-	if (!fgets(token, sizeof token, f))
-		token[0] = 0;
+	if (st.st_uid != geteuid()) {
+		snprintf(err, err_size, "token-file: %.400s belongs to uid %u, not to the daemon's user (uid %u)",
+			 d->cfg.token_file, (unsigned)st.st_uid, (unsigned)geteuid());
+		fclose(f);
+		return -1;
+	}
+	/* the first line, trimmed; a token longer than the buffer is refused, not cut (a hello must be able to
+	 * carry it whole). The line is read in a larger buffer so that the limit counts the token alone. */
+	char line[4096];
+	size_t n = fread(line, 1, sizeof line - 1, f);
+	line[n] = 0;
+	bool longer = !memchr(line, '\n', n) && n == sizeof line - 1 && fgetc(f) != EOF;
 	fclose(f);
-	token[strcspn(token, "\r\n")] = 0;
+	line[strcspn(line, "\r\n")] = 0;
+	char *text = line + strspn(line, " \t");
+	size_t len = strlen(text);
+	while (len > 0 && (text[len - 1] == ' ' || text[len - 1] == '\t'))
+		text[--len] = 0;
+	if (longer || len >= sizeof token) {
+		snprintf(err, err_size, "token-file: %.400s holds a token longer than %zu characters", d->cfg.token_file,
+			 sizeof token - 1);
+		return -1;
+	}
+	memcpy(token, text, len + 1);
 	if (strlen(token) < 16) {
-		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters", d->cfg.token_file);
+		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters (spaces around it "
+			 "do not count)", d->cfg.token_file);
 		return -1;
 	}
 	memcpy(d->token, token, sizeof token);
