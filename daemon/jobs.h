@@ -166,7 +166,9 @@ void scene_cache_destroy(struct scene_cache *c);
 void scene_cache_set_budget(struct scene_cache *c, uint64_t budget_bytes);
 /* Returns a scene for file (loading it, or reloading it when the file changed since); the scene stays
  * valid until the next call. */
-const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, struct aa_error *err);
+/* shown: how errors name the file (relative to its scene folder; never a server path). */
+const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, const char *shown,
+				      struct aa_error *err);
 void scene_cache_stats(struct scene_cache *c, struct scene_cache_stats *out);
 
 #endif

@@ -218,7 +218,10 @@ static const struct aa_scene *find_scene(struct scene_cache *scenes, const char 
 		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
 		return NULL;
 	}
-	return scene_cache_get(scenes, file, err);
+	/* errors name the file as found in its scene folder (names have no '/'), or the scene sent with the job,
+	 * never by a path of the server's (docs/aalabd.8, SCENES) */
+	const char *base = strrchr(file, '/');
+	return scene_cache_get(scenes, file, inline_scene ? "scene.json (sent with the job)" : base ? base + 1 : file, err);
 }
 
 /* Each case's scene, from the scene cache (aa_suite_run asks once per case). */
@@ -320,12 +323,32 @@ void worker_run_begin(struct store *s, struct job *job, struct worker_run *run)
 /* The job's end, however it ran: its state, the final event, its size, job.json and retention. The
  * state changes last, with job.json saved and retention applied in the same locked step: a client that
  * sees the job finished (status, list, watch_end) finds its job.json, log and the store as they stay. */
+/* A job's error never shows the state folder (an io error quotes the file it could not write): each
+ * occurrence of it becomes "STATE_DIR", as aalabd(8) names it. */
+static void hide_state_dir(char *msg, size_t size, const char *state_dir)
+{
+	const size_t n = strlen(state_dir);
+	char *at, *from = msg;
+	if (n == 0)
+		return;
+	while ((at = strstr(from, state_dir))) {
+		static const char name[] = "STATE_DIR";
+		const size_t tail = strlen(at + n) + 1;
+		if ((size_t)(at - msg) + sizeof name - 1 + tail > size)
+			break;
+		memmove(at + sizeof name - 1, at + n, tail);
+		memcpy(at, name, sizeof name - 1);
+		from = at + sizeof name - 1;
+	}
+}
+
 void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 {
 	struct store *s = run->s;
 	struct job *job = run->job;
 	const int rc = out->rc;
 	struct aa_error err = out->err;
+	hide_state_dir(err.message, sizeof err.message, s->state_dir);
 	json_t *summary = out->summary;
 	out->summary = NULL;
 	/* the verdict against the job's baseline (results.json is written by now, in this process or the
