@@ -352,6 +352,7 @@ static void on_wake(struct loop *loop, void *data)
 		reload(d, rt->argc, rt->argv);
 	}
 	conns_pump_watches(d);
+	conns_pump_input(d); /* requests left for a later turn (conn.c) */
 	if (d->draining)
 		check_drained(d);
 }
