@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "client.h"
+#include "util/file_open.h"
 
 const char aa_submit_help[] =
 	"usage: aalab submit [JOB.json|SUITE] [options]\n"
@@ -57,9 +58,9 @@ static json_t *submit(struct aa_conn *c, const char *cmd, json_t *job, const cha
 	return rc ? NULL : aa_conn_read(c, NULL, NULL);
 }
 
-static char *read_file(const char *path, size_t *size)
+static char *read_file(const char *path, size_t *size, struct aa_error *err)
 {
-	FILE *f = fopen(path, "rb");
+	FILE *f = aa_file_fopen_regular(path, "", err); /* never blocks on a FIFO */
 	if (!f)
 		return NULL;
 	struct stat st;
@@ -114,9 +115,14 @@ int cmd_submit(int argc, char **argv)
 	const char *job_scene = json_string_value(json_object_get(job, "scene"));
 	if (!scene_file && job_scene && (strchr(job_scene, '/') || strstr(job_scene, ".json")))
 		scene_file = job_scene;
-	if (scene_file && !(scene = read_file(scene_file, &scene_size))) {
-		fprintf(stderr, "aalab submit: %s: cannot read %s (at most 16 MB)\n",
-			scene_file == job_scene ? "scene" : "scene-file", scene_file);
+	struct aa_error ferr = {0};
+	if (scene_file && !(scene = read_file(scene_file, &scene_size, &ferr))) {
+		if (ferr.code == AA_ERR_INVALID) /* a FIFO, socket or device */
+			fprintf(stderr, "aalab submit: %s: %s\n", scene_file == job_scene ? "scene" : "scene-file",
+				ferr.message);
+		else
+			fprintf(stderr, "aalab submit: %s: cannot read %s (at most 16 MB)\n",
+				scene_file == job_scene ? "scene" : "scene-file", scene_file);
 		json_decref(job);
 		goto out;
 	}

@@ -8,6 +8,7 @@
 
 #include "client.h"
 #include "run/farm.h"
+#include "util/file_io.h"
 
 static int parse_int(const char *cmd, const char *field, const char *text, json_int_t *out)
 {
@@ -115,7 +116,14 @@ json_t *aa_job_load_file(const char *cmd, const char *path)
 		}
 		path = suite;
 	}
-	json_t *job = json_load_file(path, JSON_REJECT_DUPLICATES, &jerr);
+	uint8_t *text = NULL;
+	size_t size = 0;
+	if (aa_file_read(path, 64u << 20, &text, &size, &err)) { /* a FIFO is refused, not waited on */
+		fprintf(stderr, "aalab %s: job: %s\n", cmd, err.message);
+		return NULL;
+	}
+	json_t *job = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &jerr);
+	free(text);
 	if (!job) {
 		fprintf(stderr, "aalab %s: %s:%d:%d: %s\n", cmd, path, jerr.line, jerr.column, jerr.text);
 		return NULL;

@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include "client.h"
+#include "util/file_open.h"
+#include "util/socket_path.h"
 
 struct aa_conn {
 	int fd;
@@ -17,17 +19,20 @@ struct aa_conn {
 	size_t len, cap;
 };
 
-/* The default: $AALAB_CONNECT, else $XDG_RUNTIME_DIR/aalabd.sock, else the system service's socket. */
+/* The default: $AALAB_CONNECT, else the socket aalabd listens on when not told (util/socket_path.h:
+ * $XDG_RUNTIME_DIR/aalabd.sock, else /tmp/aalabd-UID/aalabd.sock in a folder that is this user's alone)
+ * when it is there, else the system service's socket. */
 static void default_address(char *out, size_t size)
 {
-	const char *env = getenv("AALAB_CONNECT"), *rt = getenv("XDG_RUNTIME_DIR");
+	const char *env = getenv("AALAB_CONNECT");
+	char path[1024];
+	struct aa_error e = {0};
+	aa_socket_default_path(path, sizeof path);
 	if (env && *env)
 		snprintf(out, size, "%s", env);
-	else if (rt && *rt && access(rt, F_OK) == 0) {
-		snprintf(out, size, "unix:%s/aalabd.sock", rt);
-		if (access(out + 5, F_OK) != 0)
-			snprintf(out, size, "unix:/run/aalabd/aalabd.sock");
-	} else
+	else if (access(path, F_OK) == 0 && aa_socket_dir_check(path, false, &e) == 0)
+		snprintf(out, size, "unix:%s", path);
+	else
 		snprintf(out, size, "unix:/run/aalabd/aalabd.sock");
 }
 
@@ -94,12 +99,20 @@ static void read_token(char *out, size_t size, char *source, size_t source_size)
 		snprintf(out, size, "%s", t);
 		snprintf(source, source_size, "$AALAB_TOKEN");
 	} else if (file) {
-		FILE *f = fopen(file, "r");
+		struct aa_error fe = {0};
+		FILE *f = aa_file_fopen_regular(file, "", &fe); /* never blocks on a FIFO */
 		if (f && fgets(out, (int)size, f))
 			out[strcspn(out, "\r\n")] = 0;
 		if (f)
 			fclose(f);
-		snprintf(source, source_size, "%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file);
+		/* spaces and tabs around the token do not count, as for aalabd's token-file */
+		size_t start = strspn(out, " \t"), len = strlen(out + start);
+		memmove(out, out + start, len + 1);
+		while (len > 0 && (out[len - 1] == ' ' || out[len - 1] == '\t'))
+			out[--len] = 0;
+		snprintf(source, source_size, "%s%s%s", token_file_option ? "--token-file " : "$AALAB_TOKEN_FILE ", file,
+			 fe.code == AA_ERR_INVALID ? ", which is not a regular file (a FIFO, socket or device) and was not "
+			 "read" : "");
 	}
 }
 

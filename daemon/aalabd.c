@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "daemon.h"
+#include "util/file_open.h"
+#include "util/socket_path.h"
 #include "jobs.h"
 #include "worker.h"
 
@@ -32,9 +34,10 @@ static const char usage[] =
 	"usage: aalabd [--socket PATH] [--state-dir DIR] [--tcp HOST:PORT --token-file FILE] [--http HOST:PORT]\n"
 	"              [--config FILE] [--web-dir DIR] [--device SEL] [--OPTION VALUE ...] [--verbose] [--check]\n"
 	"\n"
-	"Serves aalab jobs over a Unix socket (default $XDG_RUNTIME_DIR/aalabd.sock), optionally TCP with a\n"
-	"bearer token and HTTP for dashboards. Every key of the configuration file is also an option\n"
-	"(--max-connections 64, --retention-jobs 100, ...). --check only checks the configuration.\n"
+	"Serves aalab jobs over a Unix socket (default $XDG_RUNTIME_DIR/aalabd.sock, without it\n"
+	"/tmp/aalabd-UID/aalabd.sock), optionally TCP with a bearer token and HTTP for dashboards. Every key\n"
+	"of the configuration file is also an option (--max-connections 64, --retention-jobs 100, ...).\n"
+	"--check only checks the configuration.\n"
 	"See aalabd(8) and docs/protocol.md.\n";
 
 void daemon_log(struct daemon *d, int level, const char *fmt, ...)
@@ -100,26 +103,52 @@ static int read_token(struct daemon *d, char *err, size_t err_size)
 	}
 	char token[sizeof d->token] = "";
 	struct stat st;
-	FILE *f = fopen(d->cfg.token_file, "r");
-	if (!f || fstat(fileno(f), &st) < 0) {
-		snprintf(err, err_size, "token-file: cannot read %s: %s", d->cfg.token_file, strerror(errno));
-		if (f)
-			fclose(f);
+	struct aa_error aerr = {0};
+	/* opened without blocking: a FIFO here must not freeze the loop on a reload (SIGHUP) */
+	FILE *f = aa_file_fopen_regular(d->cfg.token_file, "token-file", &aerr);
+	if (!f) {
+		snprintf(err, err_size, "%s", aerr.message);
 		return -1;
 	}
-	if (!S_ISREG(st.st_mode) || (st.st_mode & 077)) {
-		snprintf(err, err_size, "token-file: %.400s is %s (mode %03o); it must be a file only its owner can "
-			 "read: chmod 600 %.400s", d->cfg.token_file, S_ISREG(st.st_mode) ? "readable or writable by others" :
-			 "not a regular file", (unsigned)(st.st_mode & 0777), d->cfg.token_file);
+	if (fstat(fileno(f), &st) < 0) {
+		snprintf(err, err_size, "token-file: cannot read %s: %s", d->cfg.token_file, strerror(errno));
 		fclose(f);
 		return -1;
 	}
-	if (!fgets(token, sizeof token, f))
-		token[0] = 0;
+	if (st.st_mode & 077) {
+		snprintf(err, err_size, "token-file: %.400s is readable or writable by others (mode %03o); it must be a "
+			 "file only its owner can read: chmod 600 %.400s", d->cfg.token_file, (unsigned)(st.st_mode & 0777),
+			 d->cfg.token_file);
+		fclose(f);
+		return -1;
+	}
+	if (st.st_uid != geteuid()) {
+		snprintf(err, err_size, "token-file: %.400s belongs to uid %u, not to the daemon's user (uid %u)",
+			 d->cfg.token_file, (unsigned)st.st_uid, (unsigned)geteuid());
+		fclose(f);
+		return -1;
+	}
+	/* the first line, trimmed; a token longer than the buffer is refused, not cut (a hello must be able to
+	 * carry it whole). The line is read in a larger buffer so that the limit counts the token alone. */
+	char line[4096];
+	size_t n = fread(line, 1, sizeof line - 1, f);
+	line[n] = 0;
+	bool longer = !memchr(line, '\n', n) && n == sizeof line - 1 && fgetc(f) != EOF;
 	fclose(f);
-	token[strcspn(token, "\r\n")] = 0;
+	line[strcspn(line, "\r\n")] = 0;
+	char *text = line + strspn(line, " \t");
+	size_t len = strlen(text);
+	while (len > 0 && (text[len - 1] == ' ' || text[len - 1] == '\t'))
+		text[--len] = 0;
+	if (longer || len >= sizeof token) {
+		snprintf(err, err_size, "token-file: %.400s holds a token longer than %zu characters", d->cfg.token_file,
+			 sizeof token - 1);
+		return -1;
+	}
+	memcpy(token, text, len + 1);
 	if (strlen(token) < 16) {
-		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters", d->cfg.token_file);
+		snprintf(err, err_size, "token-file: %s must hold a token of at least 16 characters (spaces around it "
+			 "do not count)", d->cfg.token_file);
 		return -1;
 	}
 	memcpy(d->token, token, sizeof token);
@@ -182,21 +211,31 @@ static int open_listeners(struct daemon *d, int argc, char **argv, char *err, si
 		socket_flag |= !strcmp(argv[i], "--socket");
 	/* with socket activation, only the sockets systemd passed (unless --socket is given too) */
 	if (n == 0 || socket_flag) {
+		struct aa_error serr = {0};
+		if (aa_socket_dir_check(d->cfg.socket_path, true, &serr)) { /* /tmp/aalabd-UID: 0700, ours */
+			snprintf(err, err_size, "%s", serr.message);
+			return -1;
+		}
 		int fd = listen_unix(d->cfg.socket_path, err, err_size);
 		if (fd < 0)
 			return -1;
 		add_listener(d, fd, CONN_PROTOCOL, false, d->cfg.socket_path);
 	}
+	char why[600];
 	if (d->cfg.tcp[0]) {
-		int fd = listen_tcp(d->cfg.tcp, err, err_size);
-		if (fd < 0)
+		int fd = listen_tcp(d->cfg.tcp, why, sizeof why);
+		if (fd < 0) {
+			snprintf(err, err_size, "tcp: %s", why);
 			return -1;
+		}
 		add_listener(d, fd, CONN_PROTOCOL, true, d->cfg.tcp);
 	}
 	if (d->cfg.http[0]) {
-		int fd = listen_tcp(d->cfg.http, err, err_size);
-		if (fd < 0)
+		int fd = listen_tcp(d->cfg.http, why, sizeof why);
+		if (fd < 0) {
+			snprintf(err, err_size, "http: %s", why);
 			return -1;
+		}
 		/* a dashboard on loopback needs no token; elsewhere it needs the same bearer token */
 		add_listener(d, fd, CONN_HTTP, !address_is_loopback(d->cfg.http), d->cfg.http);
 	}
@@ -257,6 +296,14 @@ struct runtime {
 	double last_watchdog;
 };
 
+static void check_drained(struct daemon *d);
+
+static void on_drain_tick(struct loop *loop, void *data)
+{
+	(void)loop;
+	check_drained(data);
+}
+
 static void start_drain(struct daemon *d)
 {
 	d->draining = true;
@@ -272,6 +319,8 @@ static void start_drain(struct daemon *d)
 	}
 	d->listener_count = 0;
 	worker_request_stop(d->store, d->cfg.drain_timeout_s == 0);
+	/* the drain timeout is met within 0.1 s, not at the next 1 s tick (aalabd(8), STOPPING A JOB) */
+	loop_every(d->loop, 100, on_drain_tick, d);
 }
 
 static void check_drained(struct daemon *d)
@@ -303,6 +352,7 @@ static void on_wake(struct loop *loop, void *data)
 		reload(d, rt->argc, rt->argv);
 	}
 	conns_pump_watches(d);
+	conns_pump_input(d); /* requests left for a later turn (conn.c) */
 	if (d->draining)
 		check_drained(d);
 }
@@ -343,6 +393,24 @@ int main(int argc, char **argv)
 	}
 	for (int i = 1; i < argc; i++)
 		if (!strcmp(argv[i], "--check")) {
+			/* a daemon already on the state folder, as start-up would find it */
+			int lock_fd;
+			if (store_lock_state_dir(d->cfg.state_dir, false, &lock_fd, err, sizeof err)) {
+				fprintf(stderr, "aalabd: %s\n", err);
+				return 2;
+			}
+			/* every listener start-up would open, bound and closed again (a port another program holds,
+			 * a socket folder that cannot be made) */
+			if (open_listeners(d, argc, argv, err, sizeof err)) {
+				fprintf(stderr, "aalabd: %s\n", err);
+				return 2;
+			}
+			for (int l = 0; l < d->listener_count; l++) {
+				close(d->listeners[l].fd);
+				if (!d->listeners[l].from_systemd && d->listeners[l].kind == CONN_PROTOCOL && !d->listeners[l].tcp)
+					unlink(d->listeners[l].name);
+			}
+			d->listener_count = 0;
 			/* the device start-up would open (--device), opened and closed again */
 			struct aa_engine *engine = NULL;
 			struct aa_error aerr = {0};
@@ -377,6 +445,14 @@ int main(int argc, char **argv)
 	store->max_interruptions = d->cfg.max_job_interruptions;
 	store->render_nice_value = render_nice_value(d->cfg.render_nice);
 	int status = 1;
+	/* one daemon per state folder, before anything in it is read or written; held until exit */
+	int lock_fd;
+	if (store_lock_state_dir(d->cfg.state_dir, true, &lock_fd, err, sizeof err)) {
+		fprintf(stderr, "aalabd: %s\n", err);
+		free(store);
+		loop_destroy(d->loop);
+		return 2;
+	}
 	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
 		free(store);
@@ -417,6 +493,7 @@ int main(int argc, char **argv)
 		/* scenes stay uploaded for later jobs within the same budget as the loaded scenes (set once: the
 		 * engine belongs to the worker thread from here on) */
 		aa_engine_set_upload_budget(store->engine, d->cfg.scene_cache_bytes);
+		aa_engine_set_interrupt(store->engine, &store->interrupt); /* cancel and shutdown (worker.c) */
 		if (references[0] &&
 		    aa_engine_set_reference_cache(store->engine, references, d->cfg.reference_cache_bytes, &aerr)) {
 			fprintf(stderr, "aalabd: %s: %s\n", aerr.path, aerr.message);

@@ -7,16 +7,20 @@
 #include <string.h>
 
 #include "daemon.h"
+#include "util/file_open.h"
+#include "util/socket_path.h"
 #include "reference/reference_cache.h"
 
 void config_defaults(struct config *c)
 {
 	memset(c, 0, sizeof *c);
-	const char *rt = getenv("XDG_RUNTIME_DIR");
-	if (rt && *rt)
-		snprintf(c->socket_path, sizeof c->socket_path, "%.90s/aalabd.sock", rt);
-	else
-		snprintf(c->socket_path, sizeof c->socket_path, "/run/aalabd/aalabd.sock");
+	/* the same default as aalab's (util/socket_path.h); a path too long for a socket is cut and then refused
+	 * by the check of the socket path */
+	char socket_path[1024];
+	aa_socket_default_path(socket_path, sizeof socket_path);
+	size_t n = strlen(socket_path) < sizeof c->socket_path ? strlen(socket_path) : sizeof c->socket_path - 1;
+	memcpy(c->socket_path, socket_path, n);
+	c->socket_path[n] = 0;
 	const char *state = getenv("STATE_DIRECTORY"); /* systemd's StateDirectory= */
 	if (state && *state)
 		snprintf(c->state_dir, sizeof c->state_dir, "%s", state);
@@ -153,9 +157,10 @@ static char *trim(char *s)
 
 int config_load(struct config *c, const char *path, char *err, size_t err_size)
 {
-	FILE *f = fopen(path, "r");
+	struct aa_error aerr = {0};
+	FILE *f = aa_file_fopen_regular(path, "config", &aerr); /* a FIFO would block the reload */
 	if (!f) {
-		snprintf(err, err_size, "config: cannot open %s: %s", path, strerror(errno));
+		snprintf(err, err_size, "%s", aerr.message);
 		return -1;
 	}
 	char line[2048], msg[512];

@@ -176,7 +176,7 @@ static void update_interest(struct conn *c)
 		return;
 	}
 	int mask = conn_pending(c) ? LOOP_WRITE : 0;
-	if (!c->eof && !c->close_after_flush && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
+	if (!c->eof && !c->close_after_flush && !c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
 		mask |= LOOP_READ;
 	loop_watch(c->d->loop, c->fd, mask, conn_io, c);
 }
@@ -208,6 +208,8 @@ static void flush(struct conn *c)
 		conn_close(c);
 		return;
 	}
+	if (c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
+		loop_wake(c->d->loop); /* a paused client read its replies: its requests go on */
 	update_interest(c);
 }
 
@@ -264,54 +266,72 @@ static void consume(struct conn *c, size_t n)
 	c->in_len -= n;
 }
 
-/* Splits the input into requests: a JSON line, then the payload it announced, if any. */
+bool conn_turn_over(const struct conn *c, int handled, double started_ms)
+{
+	return conn_pending(c) > c->d->cfg.client_buffer_bytes ||
+	       (handled > 0 && (handled >= REQUESTS_PER_TURN || loop_now_ms() - started_ms > TURN_MS));
+}
+
+/* Splits the input into requests: a JSON line, then the payload it announced, if any. What is handled
+ * is taken off the input once, at the end (one memmove a turn, not one a request). */
 static void protocol_input(struct conn *c)
 {
 	struct daemon *d = c->d;
-	while (!c->closed && c->in_len > 0) {
+	size_t off = 0;
+	int handled = 0;
+	c->backlog = false;
+	while (!c->closed && c->in_len > off) {
+		char *in = c->in + off;
+		const size_t in_len = c->in_len - off;
 		if (c->discard) {
-			size_t n = c->discard < c->in_len ? c->discard : c->in_len;
-			consume(c, n);
+			size_t n = c->discard < in_len ? c->discard : in_len;
+			off += n;
 			c->discard -= n;
 			continue;
 		}
+		if (conn_turn_over(c, handled, c->turn_ms)) {
+			c->backlog = memchr(in, '\n', in_len) != NULL || (c->pending && in_len >= c->payload_expected);
+			break;
+		}
 		if (c->pending) {
-			if (c->in_len < c->payload_expected)
-				return;
+			if (in_len < c->payload_expected)
+				break;
 			json_t *msg = c->pending;
 			size_t size = c->payload_expected;
 			c->pending = NULL;
 			c->payload_expected = 0;
-			protocol_request(c, msg, json_string_value(json_object_get(msg, "op")), c->in, size);
-			consume(c, size);
+			handled++;
+			protocol_request(c, msg, json_string_value(json_object_get(msg, "op")), in, size);
+			off += size;
 			continue;
 		}
-		char *nl = memchr(c->in, '\n', c->in_len);
+		char *nl = memchr(in, '\n', in_len);
 		if (!nl) {
-			if (c->in_len > d->cfg.max_request_bytes) {
+			if (in_len > d->cfg.max_request_bytes) {
 				if (!c->discard_line)
 					protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes "
 						       "(max-request-bytes)", d->cfg.max_request_bytes);
 				c->discard_line = true;
-				c->in_len = 0;
+				c->in_len = off; /* the rest goes */
 			}
-			return;
+			break;
 		}
-		size_t len = (size_t)(nl - c->in);
+		size_t len = (size_t)(nl - in);
 		if (c->discard_line) { /* the tail of a refused line */
 			c->discard_line = false;
-			consume(c, len + 1);
+			off += len + 1;
 			continue;
 		}
+		handled++;
 		if (len > d->cfg.max_request_bytes) {
 			protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes (max-request-bytes)",
 				       d->cfg.max_request_bytes);
-			consume(c, len + 1);
+			off += len + 1;
 			continue;
 		}
 		struct protocol_line pl;
-		protocol_parse_line(c->in, len, d->cfg.max_request_bytes, &pl);
-		consume(c, len + 1);
+		protocol_parse_line(in, len, d->cfg.max_request_bytes, &pl);
+		off += len + 1;
 		if (pl.kind == LINE_BLANK)
 			continue;
 		d->stats.requests_total++;
@@ -330,6 +350,47 @@ static void protocol_input(struct conn *c)
 		}
 		protocol_request(c, pl.msg, pl.op, NULL, 0);
 	}
+	if (!c->closed && off > 0)
+		consume(c, off);
+}
+
+static void handle_input(struct conn *c)
+{
+	c->turn_ms = loop_now_ms();
+	if (c->kind == CONN_HTTP)
+		http_input(c);
+	else
+		protocol_input(c);
+	/* more to do, and room for its replies: a later turn of the loop goes on (conns_pump_input) */
+	if (!c->closed && c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
+		loop_wake(c->d->loop);
+}
+
+static bool waits_for_turn(const struct conn *c)
+{
+	return !c->closed && c->backlog && !c->close_after_flush && conn_pending(c) <= c->d->cfg.client_buffer_bytes;
+}
+
+void conns_pump_input(struct daemon *d)
+{
+	/* turns in the order they have waited, for at most TURN_MS in all: then poll again (clients with new
+	 * input come first) and the rest in the next call */
+	const double start = loop_now_ms();
+	for (;;) {
+		struct conn *next = NULL;
+		for (struct conn *c = d->conns; c; c = c->next)
+			if (waits_for_turn(c) && (!next || c->turn_ms < next->turn_ms))
+				next = c;
+		if (!next)
+			break;
+		if (loop_now_ms() - start > TURN_MS) {
+			loop_wake(d->loop);
+			break;
+		}
+		handle_input(next);
+		update_interest(next);
+	}
+	conns_sweep(d);
 }
 
 static void conn_read(struct conn *c)
@@ -377,14 +438,12 @@ static void conn_read(struct conn *c)
 		}
 		c->in_len += (size_t)n;
 		c->last_input_ms = loop_now_ms();
-		if (c->kind == CONN_HTTP)
-			http_input(c);
-		else
-			protocol_input(c);
+		handle_input(c);
 		if (c->closed || c->close_after_flush)
 			return;
-		/* a client that pipelines requests without reading replies is paused, not buffered without end */
-		if (conn_pending(c) > d->cfg.client_buffer_bytes)
+		/* a client that pipelines requests without reading replies is paused, not buffered without end;
+		 * one with requests left for a later turn reads no more until they are handled */
+		if (c->backlog || conn_pending(c) > d->cfg.client_buffer_bytes)
 			break;
 	}
 	if ((c->in_len > 0 || c->pending) && c->partial_since_ms == 0)

@@ -84,6 +84,8 @@ struct conn {
 	bool close_after_flush, closed, eof;
 	/* the one watch this connection may run; the connection holds the job while it watches (jobs.h) */
 	struct job *watch_job;
+	bool backlog;             /* whole requests left in the input for a later turn (conns_pump_input) */
+	double turn_ms;           /* when its last turn of requests began: the longest waiting goes first */
 	unsigned long watch_next_seq;
 	json_t *watch_tag;
 	int watch_frames;         /* FRAMES_NONE / FRAMES_PNG / FRAMES_RGBA8 / FRAMES_RGBA16F */
@@ -125,6 +127,18 @@ struct daemon {
 /* conn.c */
 void conn_accept(struct loop *loop, int fd, int events, void *data);
 void conn_send(struct conn *c, const void *data, size_t size);
+/* A connection's turn of the loop: at most REQUESTS_PER_TURN requests and TURN_MS of handling them (at
+ * least one request); then the others, and poll, come before its next ones, so that a client that
+ * pipelines costly requests cannot hold the loop for all of them at once. */
+#define REQUESTS_PER_TURN 16
+#define TURN_MS 2.0
+/* Whether c has had its turn after handled requests begun at started_ms, or its replies wait over
+ * client-buffer-bytes (a client that does not read is paused: its further requests wait in its input,
+ * and past slow-client-timeout it is dropped). The input functions then set c->backlog. */
+bool conn_turn_over(const struct conn *c, int handled, double started_ms);
+/* Goes on with the requests that connections left for a later turn (each takes at most
+ * REQUESTS_PER_TURN a turn, and none while its replies wait over client-buffer-bytes). */
+void conns_pump_input(struct daemon *d);
 void conn_send_json(struct conn *c, json_t *msg); /* steals msg */
 void conn_close(struct conn *c);
 /* The connection ends once its queued output is sent (and its watch, if any, has ended): at once when

@@ -295,7 +295,13 @@ static void refuse_request(struct conn *c, int status, const char *why)
 void http_input(struct conn *c)
 {
 	struct daemon *d = c->d;
+	int handled = 0;
+	c->backlog = false;
 	while (!c->closed && !c->close_after_flush && c->in_len > 0) {
+		if (conn_turn_over(c, handled++, c->turn_ms)) { /* the rest in a later turn (conns_pump_input) */
+			c->backlog = true;
+			return;
+		}
 		struct http_request req;
 		const char *why;
 		long taken = http_parse_request(c->in, c->in_len, &req, &why);

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -355,6 +357,59 @@ static int mkdir_p(const char *dir)
 	return mkdir(tmp, 0750) != 0 && errno != EEXIST ? -1 : 0;
 }
 
+int store_lock_state_dir(const char *state_dir, bool hold, int *fd, char *err, size_t err_size)
+{
+	char path[1100];
+	*fd = -1;
+	if ((size_t)snprintf(path, sizeof path, "%s/aalabd.lock", state_dir) >= sizeof path) {
+		snprintf(err, err_size, "state-dir: '%s' is too long", state_dir);
+		return -1;
+	}
+	if (hold && mkdir_p(state_dir)) {
+		snprintf(err, err_size, "state-dir: cannot create '%s': %s", state_dir, strerror(errno));
+		return -1;
+	}
+	/* O_NONBLOCK and O_NOFOLLOW: a FIFO or a link put there must not block or redirect the daemon */
+	int lock = open(path, (hold ? O_RDWR | O_CREAT : O_RDONLY) | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0600);
+	if (lock < 0 && !hold && errno == ENOENT)
+		return 0; /* no daemon has used the folder yet */
+	struct stat st;
+	if (lock < 0 || fstat(lock, &st) != 0 || !S_ISREG(st.st_mode)) {
+		snprintf(err, err_size, "state-dir: cannot use the lock file '%s': %s", path,
+			 lock < 0 ? strerror(errno) : "not a regular file");
+		if (lock >= 0)
+			close(lock);
+		return -1;
+	}
+	if (flock(lock, LOCK_EX | LOCK_NB) != 0) {
+		int e = errno;
+		char pid[32] = "";
+		ssize_t n = pread(lock, pid, sizeof pid - 1, 0);
+		pid[n > 0 ? n : 0] = 0;
+		pid[strspn(pid, "0123456789")] = 0;
+		close(lock);
+		if (e == EWOULDBLOCK)
+			snprintf(err, err_size, "state-dir: '%s' is in use by another aalabd (PID %s, which holds %s); give "
+				 "each daemon a state folder of its own", state_dir, pid[0] ? pid : "unknown", path);
+		else
+			snprintf(err, err_size, "state-dir: cannot lock '%s': %s", path, strerror(e));
+		return -1;
+	}
+	if (!hold) {
+		close(lock);
+		return 0;
+	}
+	char pid[32];
+	int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+	if (ftruncate(lock, 0) != 0 || pwrite(lock, pid, (size_t)len, 0) != len) {
+		snprintf(err, err_size, "state-dir: cannot write '%s': %s", path, strerror(errno));
+		close(lock);
+		return -1;
+	}
+	*fd = lock;
+	return 0;
+}
+
 int store_open(struct store *s, const char *state_dir, char *err, size_t err_size)
 {
 	pthread_mutex_init(&s->lock, NULL);
@@ -472,6 +527,8 @@ int store_cancel(struct store *s, struct job *job, struct aa_error *err)
 		return aa_error_set(err, AA_ERR_INVALID, "job", "job %s is already %s", job->id,
 				    job_state_name(job->state));
 	job->cancel = true;
+	if (job == s->running)
+		atomic_store(&s->interrupt, 1); /* the engine stops at its next piece of GPU work */
 	if (job->state == JOB_QUEUED) {
 		job->state = JOB_CANCELLED;
 		job->finished_at = now_s();

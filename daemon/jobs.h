@@ -72,6 +72,7 @@ struct store {
 	bool worker_stop;         /* finish the running job, take no new one */
 	bool worker_exited;
 	struct job *running;      /* held by the worker while it runs the job (job_hold) */
+	atomic_int interrupt;     /* the running job must stop: its engine checks between pieces of GPU work */
 	struct aa_engine *engine;
 	struct scene_cache *scenes;
 	struct loop *loop;        /* woken after every change a client may be waiting for */
@@ -108,6 +109,11 @@ bool job_state_known(const char *name);
 /* Opens STATE_DIR (creating it), reads every job back: queued jobs stay queued, jobs that were running
  * when the daemon died are queued again to re-run from the start. */
 int store_open(struct store *s, const char *state_dir, char *err, size_t err_size);
+/* One daemon per state folder: an exclusive flock on STATE_DIR/aalabd.lock, which holds the holder's PID.
+ * hold: creates the folder and the file and keeps the lock (*fd) for the process's life (the kernel lets it
+ * go however the process ends); else (--check) only tries it and lets go. -1 with err naming the folder
+ * and the PID that holds it when another process has it. */
+int store_lock_state_dir(const char *state_dir, bool hold, int *fd, char *err, size_t err_size);
 void store_close(struct store *s);
 /* Adds a queued job (persisted before it is visible); the caller holds no lock. The job takes its own
  * references to the spec's user methods; their files (method_files, or NULL) are kept beside job.json
@@ -160,7 +166,9 @@ void scene_cache_destroy(struct scene_cache *c);
 void scene_cache_set_budget(struct scene_cache *c, uint64_t budget_bytes);
 /* Returns a scene for file (loading it, or reloading it when the file changed since); the scene stays
  * valid until the next call. */
-const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, struct aa_error *err);
+/* shown: how errors name the file (relative to its scene folder; never a server path). */
+const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, const char *shown,
+				      struct aa_error *err);
 void scene_cache_stats(struct scene_cache *c, struct scene_cache_stats *out);
 
 #endif

@@ -94,11 +94,12 @@ void scene_cache_set_budget(struct scene_cache *c, uint64_t budget_bytes)
 	pthread_mutex_unlock(&c->lock);
 }
 
-const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, struct aa_error *err)
+const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, const char *shown,
+				      struct aa_error *err)
 {
 	struct stat st;
 	if (stat(file, &st) < 0) {
-		aa_error_set(err, AA_ERR_NOT_FOUND, "scene", "cannot read scene file %s", file);
+		aa_error_set(err, AA_ERR_NOT_FOUND, "scene", "cannot read scene file %s", shown);
 		return NULL;
 	}
 	pthread_mutex_lock(&c->lock);
@@ -122,7 +123,7 @@ const struct aa_scene *scene_cache_get(struct scene_cache *c, const char *file, 
 	pthread_mutex_unlock(&c->lock);
 
 	struct aa_scene *scene;
-	if (aa_scene_load(file, &scene, err))
+	if (aa_scene_load_as(file, shown, &scene, err))
 		return NULL;
 	e = calloc(1, sizeof *e);
 	if (!e) {

@@ -218,7 +218,10 @@ static const struct aa_scene *find_scene(struct scene_cache *scenes, const char 
 		aa_error_set(err, AA_ERR_IO, "", "state directory path too long");
 		return NULL;
 	}
-	return scene_cache_get(scenes, file, err);
+	/* errors name the file as found in its scene folder (names have no '/'), or the scene sent with the job,
+	 * never by a path of the server's (docs/aalabd.8, SCENES) */
+	const char *base = strrchr(file, '/');
+	return scene_cache_get(scenes, file, inline_scene ? "scene.json (sent with the job)" : base ? base + 1 : file, err);
 }
 
 /* Each case's scene, from the scene cache (aa_suite_run asks once per case). */
@@ -320,20 +323,45 @@ void worker_run_begin(struct store *s, struct job *job, struct worker_run *run)
 /* The job's end, however it ran: its state, the final event, its size, job.json and retention. The
  * state changes last, with job.json saved and retention applied in the same locked step: a client that
  * sees the job finished (status, list, watch_end) finds its job.json, log and the store as they stay. */
+/* A job's error never shows the state folder (an io error quotes the file it could not write): each
+ * occurrence of it becomes "STATE_DIR", as aalabd(8) names it. */
+static void hide_state_dir(char *msg, size_t size, const char *state_dir)
+{
+	const size_t n = strlen(state_dir);
+	char *at, *from = msg;
+	if (n == 0)
+		return;
+	while ((at = strstr(from, state_dir))) {
+		static const char name[] = "STATE_DIR";
+		const size_t tail = strlen(at + n) + 1;
+		if ((size_t)(at - msg) + sizeof name - 1 + tail > size)
+			break;
+		memmove(at + sizeof name - 1, at + n, tail);
+		memcpy(at, name, sizeof name - 1);
+		from = at + sizeof name - 1;
+	}
+}
+
 void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 {
 	struct store *s = run->s;
 	struct job *job = run->job;
 	const int rc = out->rc;
 	struct aa_error err = out->err;
+	hide_state_dir(err.message, sizeof err.message, s->state_dir);
 	json_t *summary = out->summary;
 	out->summary = NULL;
 	/* the verdict against the job's baseline (results.json is written by now, in this process or the
 	 * worker process), ready before anyone can see the job done */
 	json_t *verdict = rc == 0 ? farm_judge_baseline(s, job) : NULL;
 	bool failed = rc && !(err.code == AA_ERR_CANCELLED && !out->failed_writes);
-	if (failed)
-		store_remove_partial(s, job); /* half a result is no result; it also frees the space it took */
+	pthread_mutex_lock(&s->lock);
+	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
+	pthread_mutex_unlock(&s->lock);
+	/* half a result is no result (it also frees the space it took); an interrupted job runs again from
+	 * its start, so its frames so far go too */
+	if (failed || requeue)
+		store_remove_partial(s, job);
 	if (run->log)
 		fflush(run->log);
 	/* measured before the state changes, so that status never shows a finished job with bytes 0; the
@@ -341,7 +369,6 @@ void worker_run_end(struct worker_run *run, struct worker_outcome *out)
 	uint64_t bytes_so_far = store_measure(s, job);
 	pthread_mutex_lock(&s->lock);
 	job->bytes = bytes_so_far;
-	bool requeue = job->requeue && rc && err.code == AA_ERR_CANCELLED;
 	json_t *ev;
 	enum job_state final_state;
 	if (rc == 0) {
@@ -472,6 +499,7 @@ static void *worker_main(void *arg)
 		job->log_complete = false;
 		job_hold(job); /* until worker_run_end: nothing may free it while it runs (jobs.h) */
 		s->running = job;
+		atomic_store(&s->interrupt, 0);
 		store_save(s, job);
 		pthread_mutex_unlock(&s->lock);
 		loop_wake(s->loop);
@@ -504,6 +532,7 @@ void worker_request_stop(struct store *s, bool cancel_running)
 	if (cancel_running && s->running) {
 		s->running->cancel = true;
 		s->running->requeue = true;
+		atomic_store(&s->interrupt, 1);
 	}
 	pthread_cond_signal(&s->work);
 	pthread_mutex_unlock(&s->lock);

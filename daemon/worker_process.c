@@ -14,6 +14,7 @@
 #include <limits.h>
 #include <poll.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,6 +159,18 @@ struct child {
 	bool parent_gone;
 };
 
+/* A cancel or shutdown reaches the process as SIGUSR1 carrying the number of the job it stops (the
+ * thread sends it again until the job ends: one that comes before the job is known is dropped); the
+ * engine sees the flag between the bounded pieces of its GPU work (aa_engine_set_interrupt). */
+static atomic_int child_interrupt, child_job_number;
+
+static void on_stop_signal(int sig, siginfo_t *info, void *context)
+{
+	(void)sig; (void)context;
+	if (info->si_value.sival_int == atomic_load(&child_job_number))
+		atomic_store(&child_interrupt, 1);
+}
+
 static int child_ask(struct child *c, json_t *msg)
 {
 	json_t *reply = NULL;
@@ -193,6 +206,8 @@ static void child_run(struct child *c, struct aa_engine *engine, struct scene_ca
 {
 	const char *dir = json_string_value(json_object_get(msg, "dir"));
 	json_t *budget = json_object_get(msg, "scene_cache_bytes");
+	atomic_store(&child_interrupt, 0);
+	atomic_store(&child_job_number, (int)json_integer_value(json_object_get(msg, "number")));
 	if (json_is_integer(budget)) {
 		scene_cache_set_budget(scenes, (uint64_t)json_integer_value(budget));
 		aa_engine_set_upload_budget(engine, (uint64_t)json_integer_value(budget));
@@ -237,6 +252,9 @@ int worker_process_main(int argc, char **argv)
 	signal(SIGTERM, SIG_IGN);
 	signal(SIGHUP, SIG_IGN);
 	signal(SIGPIPE, SIG_IGN);
+	struct sigaction stop = {.sa_sigaction = on_stop_signal, .sa_flags = SA_SIGINFO | SA_RESTART};
+	sigemptyset(&stop.sa_mask);
+	sigaction(SIGUSR1, &stop, NULL);
 	struct config cfg;
 	config_defaults(&cfg);
 	char err[600];
@@ -257,6 +275,7 @@ int worker_process_main(int argc, char **argv)
 		return 1;
 	}
 	aa_engine_set_upload_budget(engine, cfg.scene_cache_bytes);
+	aa_engine_set_interrupt(engine, &child_interrupt);
 	char references[1100];
 	config_reference_cache_dir(&cfg, references, sizeof references);
 	if (references[0] && aa_engine_set_reference_cache(engine, references, cfg.reference_cache_bytes, &aerr)) {
@@ -466,8 +485,11 @@ static int relay(struct store *s, struct worker_run *run, struct worker_outcome 
 	pthread_mutex_lock(&s->lock);
 	const int limit = s->job_time_limit_s;
 	const uint64_t budget = s->process_scene_budget;
-	json_t *msg = json_pack("{ss ss sO sb sI}", "type", "job", "dir", run->dir, "spec", job->spec_json,
-				"inline_scene", job->inline_scene, "scene_cache_bytes", (json_int_t)budget);
+	static int job_number; /* names the job a stop signal is for (the worker thread's only) */
+	job_number = job_number % 1000000000 + 1;
+	json_t *msg = json_pack("{ss ss sO sb sI si}", "type", "job", "dir", run->dir, "spec", job->spec_json,
+				"inline_scene", job->inline_scene, "scene_cache_bytes", (json_int_t)budget, "number",
+				job_number);
 	pthread_mutex_unlock(&s->lock);
 	const double deadline = limit > 0 ? now_ms() + limit * 1000.0 : 0;
 	double cancelled_at = 0;
@@ -521,6 +543,8 @@ static int relay(struct store *s, struct worker_run *run, struct worker_outcome 
 		pthread_mutex_unlock(&s->lock);
 		if (cancel && cancelled_at == 0)
 			cancelled_at = now_ms();
+		if (cancel) /* stops it between two pieces of GPU work; again until it ends (see on_stop_signal) */
+			sigqueue(p->pid, SIGUSR1, (union sigval){.sival_int = job_number});
 		if (cancel && now_ms() - cancelled_at > CANCEL_GRACE_SECONDS * 1000.0) {
 			/* a cancelled job stops at its next event; one stuck in a shader never gets there */
 			process_end(s, true, why, sizeof why);

@@ -4,6 +4,7 @@
 #ifndef AA_GPU_H
 #define AA_GPU_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -35,7 +36,14 @@ struct aa_gpu {
 	 * forgets the image); NULL otherwise */
 	void (*image_destroyed)(void *user, const struct aa_gpu_image *img);
 	void *image_destroyed_user;
+	/* set by whoever runs jobs (aa_engine_set_interrupt), else NULL: non-zero asks the job on this device
+	 * to stop before its next piece of GPU work (aa_gpu_interrupted) */
+	const atomic_int *interrupt; /* lock-free: a signal handler may set it */
 };
+
+/* -1 with AA_ERR_CANCELLED when the job was asked to stop: called between the bounded pieces of a job's
+ * GPU work (a reference batch, a method's render or repeat, a warm-up), never inside one. */
+int aa_gpu_interrupted(const struct aa_gpu *gpu, struct aa_error *err);
 
 /* device_select: NULL/"" = first device (or $AALAB_DEVICE), a decimal index, or a substring of the
  * device name. validation: enable VK_LAYER_KHRONOS_validation when it is installed. */

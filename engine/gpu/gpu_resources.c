@@ -186,6 +186,13 @@ void aa_gpu_buffer_destroy(struct aa_gpu *gpu, struct aa_gpu_buffer *buf)
 	memset(buf, 0, sizeof *buf);
 }
 
+int aa_gpu_interrupted(const struct aa_gpu *gpu, struct aa_error *err)
+{
+	if (gpu->interrupt && atomic_load(gpu->interrupt))
+		return aa_error_set(err, AA_ERR_CANCELLED, "", "the job was cancelled");
+	return 0;
+}
+
 int aa_gpu_begin(struct aa_gpu *gpu, VkCommandBuffer *cmd, struct aa_error *err)
 {
 	VkCommandBufferAllocateInfo ai = {

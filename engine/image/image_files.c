@@ -14,6 +14,7 @@
 
 #include "image/oiio_module.h"
 #include "image/png_io.h"
+#include "util/file_open.h"
 
 static pthread_mutex_t module_lock = PTHREAD_MUTEX_INITIALIZER;
 static const struct aa_oiio_module *module;
@@ -79,11 +80,14 @@ static const struct aa_oiio_module *oiio(const char *path, struct aa_error *err)
 /* Subimage 0 as stored, from libpng for PNG content, else from OpenImageIO. */
 static int read_pixels(const char *path, bool as_float, struct aa_file_pixels *px, struct aa_error *err)
 {
+	/* checked before any library opens it: a FIFO or a device would block the reader for good */
+	int fd = aa_file_open_regular(path, "", err);
+	if (fd < 0)
+		return err && err->code == AA_ERR_NOT_FOUND ?
+			aa_error_set(err, AA_ERR_NOT_FOUND, "", "image file '%s' does not exist", path) : -1;
+	close(fd);
 	if (aa_png_file_is_png(path))
 		return aa_png_read(path, as_float, px, err);
-	struct stat st;
-	if (stat(path, &st) != 0 && errno == ENOENT)
-		return aa_error_set(err, AA_ERR_NOT_FOUND, "", "image file '%s' does not exist", path);
 	const struct aa_oiio_module *m = oiio(path, err);
 	return m ? m->read(path, as_float, px, err) : -1;
 }

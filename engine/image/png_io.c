@@ -1,6 +1,7 @@
 /* PNG through libpng (png_io.h). Errors from libpng arrive through a longjmp to the setjmp in each
  * function; everything those functions change after setjmp is volatile or freed by the cleanup there. */
 #include "image/png_io.h"
+#include "util/file_open.h"
 
 #include <errno.h>
 #include <png.h>
@@ -32,7 +33,7 @@ static void png_warning_ignored(png_structp png, png_const_charp message)
 bool aa_png_file_is_png(const char *path)
 {
 	unsigned char signature[8];
-	FILE *f = fopen(path, "rb");
+	FILE *f = aa_file_fopen_regular(path, "", NULL); /* never blocks on a FIFO */
 	if (!f)
 		return false;
 	bool png = fread(signature, 1, sizeof signature, f) == sizeof signature &&
@@ -47,11 +48,10 @@ static int png_read_stream(FILE *f, const char *path, bool as_float, struct aa_f
 int aa_png_read(const char *path, bool as_float, struct aa_file_pixels *out, struct aa_error *err)
 {
 	memset(out, 0, sizeof *out);
-	FILE *f = fopen(path, "rb");
+	FILE *f = aa_file_fopen_regular(path, "", err); /* never blocks on a FIFO */
 	if (!f)
-		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "",
-				    errno == ENOENT ? "image file '%s' does not exist" : "cannot open image '%s': %s",
-				    path, strerror(errno));
+		return err && err->code == AA_ERR_NOT_FOUND ?
+			aa_error_set(err, AA_ERR_NOT_FOUND, "", "image file '%s' does not exist", path) : -1;
 	return png_read_stream(f, path, as_float, out, err);
 }
 

@@ -10,15 +10,17 @@
 #include <jansson.h>
 
 #include "util/error.h"
+#include "util/file_open.h"
 #include "methods/user_method.h"
 
 static int disk_read(void *ctx, const char *name, char **text, size_t *size, struct aa_error *err)
 {
 	(void)ctx;
-	FILE *f = fopen(name, "rb");
+	struct aa_error oe = {0};
+	FILE *f = aa_file_fopen_regular(name, "", &oe); /* never blocks on a FIFO */
 	if (!f)
-		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "", "%s: cannot read: %s", name,
-				    strerror(errno));
+		return aa_error_set(err, oe.code, "", "%s: %s", name, oe.code == AA_ERR_NOT_FOUND ? "not found" :
+				    oe.code == AA_ERR_INVALID ? "not a regular file (a FIFO, socket or device)" : "cannot read");
 	struct stat st;
 	if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
 		fclose(f);

@@ -62,49 +62,66 @@ void aa_reference_average(const float *sum, int count, struct aa_image_rgbaf *ou
 		out->pixels[i] = sum[i] * scale;
 }
 
+/* Renders one submission holds at most: about this many pixel samples (at least one render), so that a
+ * job asked to stop between submissions (aa_gpu_interrupted) waits for one bounded piece, never for a
+ * whole reference. The running sum stays on the GPU between them and its batches of AA_ACCUMULATE_BATCH
+ * renders are the same however the submissions split them, so the image is the same to the bit. */
+#define REFERENCE_SUBMIT_PIXEL_SAMPLES (2 << 20)
+
 /* Records renders [from, to) of the reference's pattern into the running sum (cleared first when from is 0),
  * copying the sum out into half_buf after render mid (when from < mid < to) and into full_buf at the end;
- * submits and waits. gpu_ms: the renders and their accumulation. */
+ * submits them in pieces and waits. gpu_ms: the renders and their accumulation. */
 static int render_span(struct aa_reference *ref, struct aa_gpu_timer *timer, int from, int mid, int to,
 		       double *gpu_ms, struct aa_error *err)
 {
 	struct aa_renderer *r = ref->r;
-	VkCommandBuffer cmd;
-	if (aa_gpu_begin(r->gpu, &cmd, err))
-		return -1;
-	aa_gpu_timer_reset(cmd, timer);
-	int span = aa_gpu_timer_begin(cmd, timer, "reference");
-	if (from == 0) {
-		aa_renderer_record_shadow(r, cmd);
-		aa_sample_accumulator_clear(&ref->sum, cmd);
-	}
-	int spans = 1;
-	for (int i = from; i < to; i++) {
-		aa_sample_accumulator_render(&ref->sum, cmd, ref->offsets[i][0], ref->offsets[i][1]);
-		if (i + 1 != mid || mid >= to)
-			continue;
-		/* the sum of the first mid renders is copied out on the way (outside the timed spans) */
-		struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
-		aa_gpu_timer_end(cmd, timer, span);
-		if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback_half, err)) {
-			aa_gpu_submit_wait(r->gpu, cmd, NULL);
+	const long pixels = (long)r->width * r->height;
+	const int per_submit = pixels > 0 && REFERENCE_SUBMIT_PIXEL_SAMPLES / pixels > 1 ?
+		(int)(REFERENCE_SUBMIT_PIXEL_SAMPLES / pixels) : 1;
+	*gpu_ms = 0;
+	for (int first = from; first < to; first += per_submit) {
+		const int last = first + per_submit < to ? first + per_submit : to;
+		VkCommandBuffer cmd;
+		if (aa_gpu_interrupted(r->gpu, err) || aa_gpu_begin(r->gpu, &cmd, err))
 			return -1;
+		aa_gpu_timer_reset(cmd, timer);
+		int span = aa_gpu_timer_begin(cmd, timer, "reference");
+		if (first == 0) {
+			aa_renderer_record_shadow(r, cmd);
+			aa_sample_accumulator_clear(&ref->sum, cmd);
 		}
-		span = aa_gpu_timer_begin(cmd, timer, "reference");
-		spans++;
+		int spans = 1;
+		for (int i = first; i < last; i++) {
+			aa_sample_accumulator_render(&ref->sum, cmd, ref->offsets[i][0], ref->offsets[i][1]);
+			if (i + 1 != mid || mid >= to)
+				continue;
+			/* the sum of the first mid renders is copied out on the way (outside the timed spans) */
+			struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
+			aa_gpu_timer_end(cmd, timer, span);
+			if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback_half, err)) {
+				aa_gpu_submit_wait(r->gpu, cmd, NULL);
+				return -1;
+			}
+			span = aa_gpu_timer_begin(cmd, timer, "reference");
+			spans++;
+		}
+		if (last == to) {
+			struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
+			aa_gpu_timer_end(cmd, timer, span);
+			if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback, err)) {
+				aa_gpu_submit_wait(r->gpu, cmd, NULL);
+				return -1;
+			}
+		} else {
+			aa_gpu_timer_end(cmd, timer, span);
+		}
+		if (aa_gpu_submit_wait(r->gpu, cmd, err))
+			return -1;
+		double ms[2] = {0, 0};
+		if (aa_gpu_timer_read(r->gpu, timer, ms, err))
+			return -1;
+		*gpu_ms += ms[0] + (spans > 1 ? ms[1] : 0);
 	}
-	struct aa_gpu_image *sum = aa_sample_accumulator_sum(&ref->sum, cmd);
-	aa_gpu_timer_end(cmd, timer, span);
-	if (aa_gpu_record_readback(r->gpu, cmd, sum, &ref->readback, err)) {
-		aa_gpu_submit_wait(r->gpu, cmd, NULL);
-		return -1;
-	}
-	if (aa_gpu_submit_wait(r->gpu, cmd, err))
-		return -1;
-	double ms[2] = {0, 0};
-	if (aa_gpu_timer_read(r->gpu, timer, ms, err))
-		return -1;
-	*gpu_ms = ms[0] + (spans > 1 ? ms[1] : 0);
 	return 0;
 }
 

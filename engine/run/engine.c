@@ -70,6 +70,11 @@ bool aa_engine_reference_cache_stats(struct aa_engine *e, struct aa_reference_ca
 	return true;
 }
 
+void aa_engine_set_interrupt(struct aa_engine *e, const atomic_int *flag)
+{
+	e->gpu.interrupt = flag;
+}
+
 void aa_engine_set_upload_budget(struct aa_engine *e, uint64_t bytes)
 {
 	e->upload_budget = bytes;

@@ -3,6 +3,7 @@
 #ifndef AA_H
 #define AA_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 
 #include "util/env_flag.h"
@@ -34,6 +35,10 @@ struct aa_upload_stats {
 	int scenes;       /* scenes cached now */
 };
 void aa_engine_set_upload_budget(struct aa_engine *engine, uint64_t bytes);
+/* A flag another thread (or a signal handler) sets to stop the running job: the job checks it between
+ * the bounded pieces of its GPU work and ends with AA_ERR_CANCELLED (docs/aalabd.8, STOPPING A JOB).
+ * NULL: none. The caller clears it before each job. */
+void aa_engine_set_interrupt(struct aa_engine *engine, const atomic_int *flag);
 struct aa_upload_stats aa_engine_upload_stats(const struct aa_engine *engine);
 
 /* The store of references (engine/reference/reference_cache.h, docs/reference-cache.md) that jobs read

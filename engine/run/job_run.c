@@ -218,6 +218,8 @@ static int render_reference(struct job_state *js, int ordinal, bool reuse, const
 		return 0;
 	}
 	rf->frame = js->spec->first_frame + ordinal;
+	if (aa_gpu_interrupted(&js->engine->gpu, err))
+		return -1;
 	struct aa_metrics m;
 	aa_reference_store_frame(&js->store, &js->reference, ctx);
 	if (js->spec->reference_auto) {
@@ -261,7 +263,7 @@ static int warm_up(struct job_state *js, struct aa_frame_ctx *ctx, struct aa_err
 			continue;
 		const struct aa_method *method = js->spec->methods[i].method;
 		struct aa_frame_ctx warm = *ctx;
-		if (aa_gpu_begin(gpu, &warm.cmd, err))
+		if (aa_gpu_interrupted(gpu, err) || aa_gpu_begin(gpu, &warm.cmd, err))
 			return -1;
 		aa_gpu_timer_reset(warm.cmd, &js->timer);
 		aa_renderer_record_shadow(js->renderer, warm.cmd);
@@ -290,7 +292,8 @@ static int timed_render(struct job_state *js, int i, struct aa_method_state *sta
 	double t0 = aa_now_ms();
 	if (ctx->cut && method->reset)
 		method->reset(state);
-	if (aa_gpu_begin(gpu, &ctx->cmd, err))
+	/* a job asked to stop does so between renders: each is one bounded piece of GPU work */
+	if (aa_gpu_interrupted(gpu, err) || aa_gpu_begin(gpu, &ctx->cmd, err))
 		return -1;
 	aa_gpu_timer_reset(ctx->cmd, &js->timer);
 	if (js->renderer->plan.shadow_map) {

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "scene/mesh_file.h"
+#include "util/file_open.h"
 
 #define GLB_MAGIC 0x46546C67u      /* "glTF" */
 #define GLB_CHUNK_JSON 0x4E4F534Au /* "JSON" */
@@ -32,7 +33,7 @@ bool aa_gltf_file_is_gltf(const char *path)
 	if (ends_with(path, ".gltf") || ends_with(path, ".glb"))
 		return true;
 	unsigned char magic[4] = {0};
-	FILE *f = fopen(path, "rb");
+	FILE *f = aa_file_fopen_regular(path, "", NULL); /* never blocks on a FIFO */
 	bool glb = f && fread(magic, 1, 4, f) == 4 && memcmp(magic, "glTF", 4) == 0;
 	if (f)
 		fclose(f);
@@ -124,11 +125,14 @@ __attribute__((format(printf, 3, 4))) static int fail_doc(struct doc *d, enum aa
 
 static int read_file(struct doc *d)
 {
-	FILE *f = fopen(d->path, "rb");
+	struct aa_error oe = {0};
+	FILE *f = aa_file_fopen_regular(d->path, "", &oe); /* never blocks on a FIFO */
 	struct stat st;
 	if (!f || fstat(fileno(f), &st) != 0) {
 		if (f)
 			fclose(f);
+		if (oe.code == AA_ERR_INVALID)
+			return FAIL(d, AA_ERR_INVALID, "is not a regular file (a FIFO, socket or device)");
 		return FAIL(d, AA_ERR_IO, "cannot open: %s", strerror(errno));
 	}
 	d->file_size = (size_t)st.st_size;
@@ -309,7 +313,9 @@ static int load_buffers(struct doc *d)
 			if (aa_resolve_beside(d->path, d->base_dir, uri, full, sizeof full, &e))
 				return FAIL(d, e.code, "buffers[%d].uri: %s", i, e.message);
 			struct stat st;
-			FILE *f = fopen(full, "rb");
+			FILE *f = aa_file_fopen_regular(full, "", &e); /* never blocks on a FIFO */
+			if (!f && e.code == AA_ERR_INVALID)
+				return FAIL(d, AA_ERR_INVALID, "buffers[%d].uri: '%s' is not a regular file (a FIFO, socket or device)", i, uri);
 			if (!f || fstat(fileno(f), &st) != 0 || (uint64_t)st.st_size > AA_MESH_FILE_MAX_BYTES) {
 				if (f)
 					fclose(f);

@@ -6,6 +6,7 @@
  * from the file unless the object overrides them (mesh_file_materials.c). */
 #include "scene/mesh_file_loader.h"
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -14,8 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "scene/mesh_procedural.h"
+#include "util/file_open.h"
 #include "scene/mesh_text_check.h"
 #include "scene/texture.h"
 
@@ -538,14 +541,86 @@ static int build_parts(struct loader *L, int *first_part)
 	return 0;
 }
 
+/* assimp's I/O system: every file it opens (the mesh, and what the mesh names: .mtl, .bin, ...) is opened
+ * through aa_file_open_regular, so that a FIFO or a device it meets is refused instead of blocking. */
+static size_t ai_read(struct aiFile *f, char *buf, size_t size, size_t count)
+{
+	return fread(buf, size, count, (FILE *)f->UserData);
+}
+
+static size_t ai_write(struct aiFile *f, const char *buf, size_t size, size_t count)
+{
+	(void)f; (void)buf; (void)size; (void)count;
+	return 0;
+}
+
+static size_t ai_tell(struct aiFile *f)
+{
+	long at = ftell((FILE *)f->UserData);
+	return at < 0 ? 0 : (size_t)at;
+}
+
+static size_t ai_size(struct aiFile *f)
+{
+	struct stat st;
+	return fstat(fileno((FILE *)f->UserData), &st) == 0 ? (size_t)st.st_size : 0;
+}
+
+static aiReturn ai_seek(struct aiFile *f, size_t offset, enum aiOrigin origin)
+{
+	int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
+	return fseek((FILE *)f->UserData, (long)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
+}
+
+static void ai_flush(struct aiFile *f)
+{
+	(void)f;
+}
+
+static struct aiFile *ai_open(struct aiFileIO *io, const char *path, const char *mode)
+{
+	(void)io;
+	if (strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
+		return NULL; /* reading only */
+	FILE *fp = aa_file_fopen_regular(path, "", NULL);
+	struct aiFile *f = fp ? calloc(1, sizeof *f) : NULL;
+	if (!f) {
+		if (fp)
+			fclose(fp);
+		return NULL;
+	}
+	*f = (struct aiFile){.ReadProc = ai_read, .WriteProc = ai_write, .TellProc = ai_tell, .FileSizeProc = ai_size,
+			     .SeekProc = ai_seek, .FlushProc = ai_flush, .UserData = (aiUserData)fp};
+	return f;
+}
+
+static void ai_close(struct aiFileIO *io, struct aiFile *f)
+{
+	(void)io;
+	if (f) {
+		fclose((FILE *)f->UserData);
+		free(f);
+	}
+}
+
+static struct aiFileIO ai_files = {.OpenProc = ai_open, .CloseProc = ai_close};
+
 int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, const char *shown,
 		      const char *base_dir, const struct aa_mesh_file_options *options, uint64_t max_triangles)
 {
 	struct loader L = {.s = s, .scene = scene, .path = path, .shown = shown, .base_dir = base_dir,
 			   .options = options};
 	struct stat st;
-	if (stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+	struct aa_error oerr = {0};
+	int fd = aa_file_open_regular(path, "", &oerr); /* never blocks on a FIFO */
+	if (fd < 0 && oerr.code == AA_ERR_INVALID)
+		return sj_fail(s, AA_ERR_INVALID, "mesh file '%s' is not a regular file (a FIFO, socket or device)", shown);
+	if (fd < 0 || fstat(fd, &st) != 0) {
+		if (fd >= 0)
+			close(fd);
 		return sj_fail(s, AA_ERR_NOT_FOUND, "mesh file '%s' not found", shown);
+	}
+	close(fd);
 	if ((uint64_t)st.st_size > AA_MESH_FILE_MAX_BYTES)
 		return sj_fail(s, AA_ERR_LIMIT, "mesh file '%s' is %lld bytes, over the limit of %u", shown,
 			       (long long)st.st_size, (unsigned)AA_MESH_FILE_MAX_BYTES);
@@ -557,7 +632,7 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 		rc = aa_gltf_check(s, scene, path, shown, base_dir, &L.gltf_info);
 	else /* OBJ, OFF, PLY, STL: read by aalab first (mesh_text_check.c); any other format is refused */
 		rc = aa_mesh_text_check_file(s, scene, path, shown, base_dir, options->missing_warn);
-	if (rc == 0 && !(L.ai = aiImportFile(path, 0)))
+	if (rc == 0 && !(L.ai = aiImportFileEx(path, 0, &ai_files)))
 		rc = import_error(&L);
 	if (rc == 0)
 		rc = check_raw(&L);
@@ -567,8 +642,8 @@ int aa_mesh_file_load(struct sj *s, struct aa_scene *scene, const char *path, co
 	 * aiImportFile returns NULL. The checks above ran on the raw import. */
 	if (rc == 0) {
 		aiReleaseImport(L.ai);
-		if (!(L.ai = aiImportFile(path, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_GenSmoothNormals |
-						      aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs)))
+		if (!(L.ai = aiImportFileEx(path, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_GenSmoothNormals |
+							aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs, &ai_files)))
 			rc = import_error(&L);
 	}
 	if (rc == 0)

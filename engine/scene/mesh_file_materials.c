@@ -9,10 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "image/image.h"
 #include "scene/mesh_file_loader.h"
 #include "scene/texture.h"
+#include "util/file_open.h"
 
 static int add_texture_slot(struct loader *L)
 {
@@ -70,6 +72,11 @@ static int load_texture(struct loader *L, const char *ref, bool linear, const ch
 		}
 		if (rc)
 			return FAIL(L, e.code, "%s: texture %s", what, e.message);
+		int fd = aa_file_open_regular(full, "", &e); /* never blocks on a FIFO */
+		if (fd < 0 && e.code == AA_ERR_INVALID)
+			return FAIL(L, AA_ERR_INVALID, "%s: texture '%s' is not a regular file (a FIFO, socket or device)", what, ref);
+		if (fd >= 0)
+			close(fd);
 		if (stat(full, &st) != 0 || (uint64_t)st.st_size > AA_MESH_FILE_MAX_BYTES)
 			return FAIL(L, AA_ERR_LIMIT, "%s: texture '%s' is over %u bytes", what, ref,
 				    (unsigned)AA_MESH_FILE_MAX_BYTES);

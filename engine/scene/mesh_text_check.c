@@ -25,6 +25,7 @@
 #include "scene/mesh_file.h"
 #include "scene/mesh_text.h"
 #include "scene/scene.h"
+#include "util/file_open.h"
 
 #define TEXT_MAX_LINE 65536
 
@@ -234,8 +235,13 @@ int aa_mesh_text_check(enum aa_mesh_format format, const char *data, size_t size
 /* The whole file in memory (the scene loader has checked its size). */
 static char *read_all(const char *path, size_t *size, struct aa_error *e)
 {
-	FILE *f = fopen(path, "rb");
+	struct aa_error oe = {0};
+	FILE *f = aa_file_fopen_regular(path, "", &oe); /* never blocks on a FIFO */
 	struct stat st;
+	if (!f && oe.code == AA_ERR_INVALID) {
+		aa_error_set(e, AA_ERR_INVALID, "", "is not a regular file (a FIFO, socket or device)");
+		return NULL;
+	}
 	if (!f || fstat(fileno(f), &st) != 0) {
 		aa_error_set(e, AA_ERR_IO, "", "cannot open: %s", strerror(errno));
 		if (f)

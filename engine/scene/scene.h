@@ -325,6 +325,9 @@ int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa
  * what is wrong. Relative mesh/texture paths resolve against the scene file's directory and may not
  * leave it (no "..", no absolute paths). */
 int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err);
+/* The same, naming the file `shown` in errors instead of path (aalabd: relative to the scene folder it was
+ * found in, so that no error shows the server's folders). */
+int aa_scene_load_as(const char *path, const char *shown, struct aa_scene **out, struct aa_error *err);
 /* Same from an in-memory JSON text; base_dir is where relative files resolve (may be NULL: none). */
 int aa_scene_load_string(const char *json_text, const char *display_name, const char *base_dir,
 			 struct aa_scene **out, struct aa_error *err);

@@ -510,7 +510,7 @@ int sj_resolve_file(struct sj *s, const char *base_dir, const char *rel, char *o
 	if (!realpath(base_dir, real_base))
 		return sj_fail(s, AA_ERR_NOT_FOUND, "scene directory '%s' not found", base_dir);
 	if (!realpath(joined, real_file))
-		return sj_fail(s, AA_ERR_NOT_FOUND, "file '%s' not found (looked in %s)", rel, base_dir);
+		return sj_fail(s, AA_ERR_NOT_FOUND, "file '%s' not found in the scene file's folder", rel);
 	/* A symlink inside the directory must not lead out of it either. */
 	size_t bl = strlen(real_base);
 	if (strncmp(real_file, real_base, bl) != 0 || (real_file[bl] != '/' && strcmp(real_base, "/") != 0))

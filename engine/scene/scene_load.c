@@ -723,26 +723,33 @@ int aa_scene_load_string(const char *json_text, const char *display_name, const 
 
 int aa_scene_load(const char *path, struct aa_scene **out, struct aa_error *err)
 {
+	return aa_scene_load_as(path, path, out, err);
+}
+
+int aa_scene_load_as(const char *path, const char *shown, struct aa_scene **out, struct aa_error *err)
+{
 	struct stat st;
 	json_error_t je;
 	*out = NULL;
 	if (stat(path, &st) != 0)
 		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "",
-				    "scene file '%s' %s", path, errno == ENOENT ? "not found" : strerror(errno));
+				    "scene file '%s' %s", shown, errno == ENOENT ? "not found" : strerror(errno));
 	if (!S_ISREG(st.st_mode))
-		return aa_error_set(err, AA_ERR_IO, "", "scene file '%s' is not a regular file", path);
+		return aa_error_set(err, AA_ERR_IO, "", "scene file '%s' is not a regular file", shown);
 	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
+		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", shown,
 				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
 	/* parsed from the bytes that are hashed: the content digest is of what was loaded */
 	uint8_t *text;
 	size_t size;
-	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, err))
-		return -1;
+	struct aa_error rerr = {0};
+	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, &rerr))
+		return aa_error_set(err, rerr.code, "", "scene file '%s' %s", shown, rerr.code == AA_ERR_INVALID ?
+				    "is not a regular file" : "cannot be read");
 	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
 	char dir[PATH_MAX];
 	snprintf(dir, sizeof dir, "%s", path);
-	int rc = root ? load_json(root, path, dirname(dir), path, out, err) : json_error(err, path, &je);
+	int rc = root ? load_json(root, shown, dirname(dir), path, out, err) : json_error(err, shown, &je);
 	if (rc == 0)
 		aa_scene_sources_digest(*out, text, size);
 	free(text);
@@ -761,7 +768,12 @@ int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa
 	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
 				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
-	json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
+	uint8_t *text;
+	size_t size;
+	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, err)) /* never blocks on a FIFO */
+		return -1;
+	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
+	free(text);
 	if (!root)
 		return json_error(err, path, &je);
 	struct sj s;

@@ -8,9 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "image/image.h"
 #include "scene/scene_json.h"
+#include "util/file_open.h"
 
 #define TEXTURE_FILE_MAX_BYTES (64u << 20)
 #define TEXT_MAX_CHARS 256
@@ -412,6 +414,11 @@ int aa_texture_from_json(struct sj *s, const json_t *spec, const char *base_dir,
 		size_t mark = sj_push_key(s, "file");
 		if (sj_resolve_file(s, base_dir, rel, full, sizeof full))
 			return -1;
+		int fd = aa_file_open_regular(full, "", &e); /* never blocks on a FIFO */
+		if (fd < 0 && e.code == AA_ERR_INVALID)
+			return sj_fail(s, AA_ERR_INVALID, "image '%s' is not a regular file (a FIFO, socket or device)", rel);
+		if (fd >= 0)
+			close(fd);
 		if (stat(full, &st) != 0 || (uint64_t)st.st_size > TEXTURE_FILE_MAX_BYTES)
 			return sj_fail(s, AA_ERR_LIMIT, "image '%s' is larger than %u bytes", rel,
 				       (unsigned)TEXTURE_FILE_MAX_BYTES);

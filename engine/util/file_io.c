@@ -9,21 +9,20 @@
 #include <unistd.h>
 
 #include "util/file_io.h"
+#include "util/file_open.h"
 
 int aa_file_read(const char *path, size_t max, uint8_t **data, size_t *size, struct aa_error *err)
 {
 	*data = NULL;
 	*size = 0;
-	const int fd = open(path, O_RDONLY | O_CLOEXEC);
+	const int fd = aa_file_open_regular(path, "", err); /* never blocks on a FIFO or a device */
 	if (fd < 0)
-		return aa_error_set(err, errno == ENOENT ? AA_ERR_NOT_FOUND : AA_ERR_IO, "", "cannot open %s: %s",
-				    path, strerror(errno));
+		return -1;
 	struct stat st;
-	if (fstat(fd, &st) < 0 || !S_ISREG(st.st_mode)) {
-		const int saved = S_ISREG(st.st_mode) ? errno : EINVAL;
+	if (fstat(fd, &st) < 0) {
+		const int saved = errno;
 		close(fd);
-		return aa_error_set(err, AA_ERR_IO, "", "cannot read %s: %s", path,
-				    saved == EINVAL ? "not a regular file" : strerror(saved));
+		return aa_error_set(err, AA_ERR_IO, "", "cannot read %s: %s", path, strerror(saved));
 	}
 	if ((uint64_t)st.st_size > max) {
 		close(fd);

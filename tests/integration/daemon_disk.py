@@ -35,6 +35,8 @@ try:
     st = wait_state(c, a, ["done", "failed", "cancelled"])
     check(st["state"] == "failed" and st["error"]["code"] == "io",
           "a job that fills the disk fails with io (%s: %s)" % (st["state"], st.get("error")))
+    check(d.state not in st["error"]["message"] and "STATE_DIR" in st["error"]["message"],
+          "its error names the file under STATE_DIR, not the server's folder")
     jobdir = os.path.join(d.state, "jobs", a)
     left = [p for p in ("frames", "linear", "diff", "flip", "results.json") if os.path.exists(os.path.join(jobdir, p))]
     check(not left, "its partial output is removed (%s)" % left)

@@ -80,15 +80,44 @@ def set_time_limit(d, config, seconds):
             time.sleep(0.05)
 
 
+def rasterizer_cpu_s(pid):
+    """CPU seconds that the process's llvmpipe threads (where lavapipe runs shaders) have used."""
+    total = 0
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            with open("/proc/%d/task/%s/stat" % (pid, tid)) as f:
+                comm, rest = f.read().split("(", 1)[1].rsplit(")", 1)
+        except OSError:
+            continue  # the thread ended
+        if comm.startswith("llvmpipe"):
+            fields = rest.split()
+            total += int(fields[11]) + int(fields[12])  # utime, stime
+    return total / os.sysconf("SC_CLK_TCK")
+
+
+# rasterizer CPU a job's own frames may use before its hung shader: the reference of HANG_SIZE at 4 samples
+# takes a few ms of it (measured below with a whole job of that size); a second means the shader is running
+INSIDE_SHADER_CPU_S = 1.0
+
+
 def wait_inside_shader(d, job):
-    """Returns once the job's job_started event is logged: the worker's next step is the warm-up frame of
-    its one method, the hung shader, and no event or cancel check comes before that frame ends."""
+    """Returns once the job's worker process runs the hung shader: after the job_started event the worker
+    renders the job's small reference, checks once more for a stop (between two pieces of GPU work) and
+    starts the warm-up frame of its one method, the hung shader, which no stop ends. Inside it, the
+    process's rasterizer threads use CPU time without end; the reference uses a few ms of it."""
     w = d.connect()
     r = w.request({"op": "watch", "job": job, "frames": "none"})
     assert r.get("ok"), r
     while w.read().get("event") != "job_started":
         pass
     w.close()
+    pid = worker_pids(d)[-1]
+    start = rasterizer_cpu_s(pid)
+    deadline = time.time() + 600
+    while rasterizer_cpu_s(pid) - start < INSIDE_SHADER_CPU_S:
+        if time.time() > deadline:
+            raise RuntimeError("job %s: the worker process's rasterizer did not run its shader" % job)
+        time.sleep(0.05)
 
 
 def worker_pids(d):
@@ -268,6 +297,17 @@ try:
           and "signal 6" in cj["error"]["message"], "a dead process fails its job: %s" % cj.get("error"))
     r = submit(c, dict(SMALL, methods=["none", "user:file=m/edge_blur.json"]), example_files())
     check(wait_state(c, r["job"], ["done", "failed"])["state"] == "done", "and the next job succeeds")
+
+    # the margin of wait_inside_shader: a whole job of the hung job's size and reference, with a method that
+    # ends, uses a small share of the rasterizer CPU that is taken to mean "inside the hung shader"
+    pid = worker_pids(d)[-1]
+    before = rasterizer_cpu_s(pid)
+    r = submit(c, dict(SMALL, size=HANG_SIZE, methods=["none"]))
+    check(wait_state(c, r["job"], ["done", "failed"])["state"] == "done", "a job of the hung job's size runs")
+    used = rasterizer_cpu_s(pid) - before
+    print("measured: a whole %s job used %.3f s of rasterizer CPU (taken as inside the shader: %.1f s)"
+          % (HANG_SIZE, used, INSIDE_SHADER_CPU_S))
+    check(used < INSIDE_SHADER_CPU_S / 4, "a job's own reference stays far below the mark of the hung shader")
 
     # a hung job that is cancelled does not wait for its time limit
     stuck = submit(c, dict(SMALL, size=HANG_SIZE, methods=["user:file=hang.json"]), HANG)["job"]

@@ -71,7 +71,9 @@ DAEMON_TESTS = tests/integration/daemon_protocol.py tests/integration/daemon_job
 	tests/integration/systemd_units.sh tests/integration/dashboard.sh \
 	tests/integration/exr_over_threshold.py tests/integration/daemon_bounds.py \
 	tests/integration/daemon_priority.py tests/integration/daemon_farm.py tests/integration/dashboard_trends.sh \
-	tests/integration/daemon_reference_cache.sh tests/integration/daemon_retention.py
+	tests/integration/daemon_reference_cache.sh tests/integration/daemon_retention.py tests/integration/daemon_stop.py \
+	tests/integration/daemon_files.py tests/integration/daemon_state_lock.py tests/integration/daemon_socket_default.py \
+	tests/integration/daemon_token_rules.py tests/integration/daemon_scene_paths.py tests/integration/daemon_fair_output.py
 TESTS += $(DAEMON_TESTS)
 EXTRA_DIST += $(DAEMON_TESTS) tests/integration/daemon_lib.py tests/integration/daemon_valgrind.sh \
 	tests/integration/valgrind.supp
