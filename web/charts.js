@@ -137,9 +137,12 @@ function placeLabels(points, box, font) {
       best = {x0, y0: p.y - H / 2, x1: x0 + w, y1: p.y + H / 2};
     }
     boxes.push(best);
-    /* the leader ends at the box's nearest point; a label right beside its point needs none */
+    /* the leader ends at the box's nearest point; a label right beside its point needs none, unless
+     * another point is as near to it (a spot taken when nothing strict was free) */
     const ex = Math.min(Math.max(p.x, best.x0), best.x1), ey = Math.min(Math.max(p.y, best.y0), best.y1);
-    const far = Math.hypot(ex - p.x, ey - p.y) > R + 4;
+    const own = boxDistance(best, p.x, p.y);
+    const far = Math.hypot(ex - p.x, ey - p.y) > R + 4 ||
+                points.some((q, j) => j !== i && (q.x !== p.x || q.y !== p.y) && boxDistance(best, q.x, q.y) <= own);
     placed[i] = Object.assign(best, {gx: best.x0 + PAD + GLYPH / 2 - 1, gy: best.y0 + H / 2, tx: best.x0 + PAD + GLYPH,
                                      ty: best.y0 + H - 4, leader: far ? [p.x, p.y, ex, ey] : null});
   }

@@ -73,12 +73,14 @@ try:
           % (p99(idle) * 1000, NON_READERS, p99(busy) * 1000, busy[-1] * 1000))
     # a ping waits for the request being handled and at most one more turn (one costly request), never for
     # a client's pipeline; the margin is one more list, for a machine that is busy with other work
-    check(p99(busy) <= 2 * p99(idle) + 3 * one_list, "ping p99 with %d non-readers within 2x of idle plus "
-          "three lists (%.2f ms <= 2 x %.2f + 3 x %.2f ms)" % (NON_READERS, p99(busy) * 1000, p99(idle) * 1000,
+    # margins measured under the sanitizer build beside a full `make check` on 2 cores: p99 up to 3.6
+    # lists, the longest wait up to 25 lists (a busy machine delays pings and lists unequally)
+    check(p99(busy) <= 2 * p99(idle) + 8 * one_list, "ping p99 with %d non-readers within 2x of idle plus "
+          "eight lists (%.2f ms <= 2 x %.2f + 8 x %.2f ms)" % (NON_READERS, p99(busy) * 1000, p99(idle) * 1000,
                                                               one_list * 1000))
     # without turns a ping waited for a non-reader's whole pipeline up to client-buffer-bytes (over 40 lists:
-    # seen 1.1 to 6.3 s); with them for about two lists. 16 lists leaves room for a busy machine
-    check(busy[-1] < 16 * one_list, "the longest ping wait is below 16 lists (%.2f ms < 16 x %.2f ms)"
+    # seen 1.1 to 6.3 s); with them for about two lists
+    check(busy[-1] < 32 * one_list, "the longest ping wait is below 32 lists (%.2f ms < 32 x %.2f ms)"
           % (busy[-1] * 1000, one_list * 1000))
 
     # they are paused (their requests wait unread) and dropped after slow-client-timeout
