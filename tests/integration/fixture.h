@@ -4,6 +4,7 @@
 #ifndef AA_TEST_FIXTURE_H
 #define AA_TEST_FIXTURE_H
 
+#include "reference/exact_coverage.h"
 #include "run/engine.h"
 
 extern struct aa_engine *fixture_engine;
@@ -20,5 +21,14 @@ void fixture_spec(struct aa_job_spec *spec, const char *scene, const char *const
 struct aa_job_result *fixture_run(const struct aa_job_spec *spec, const struct aa_scene *scene, aa_event_fn fn,
 				  void *user);
 void fixture_free(struct aa_job_result *r);
+
+/* `none` and `method` on a white-on-black 2D pattern (size x size, one frame) against its exact coverage. */
+struct fixture_coverage {
+	double error[2];      /* mean |red - exact coverage| of none and of the method */
+	double max_change;    /* largest |method - none| */
+	int brighter, darker; /* pixels the method made brighter / darker than none by more than 1e-3 */
+};
+struct fixture_coverage fixture_pattern_coverage(enum aa_pattern2d_kind pattern, double angle, const char *method,
+						 int size);
 
 #endif

@@ -89,53 +89,9 @@ static void test_textures_kept(void **state)
 	fixture_free(r);
 }
 
-struct capture {
-	const double *coverage;
-	int size;
-	double error[2];   /* mean abs coverage error of none and cmaa2 */
-	double max_change; /* largest |cmaa2 - none| */
-	float *none;
-};
-
-static int on_frame(const struct aa_event *ev, void *user)
+static struct fixture_coverage run_pattern(enum aa_pattern2d_kind pattern, double angle)
 {
-	struct capture *c = user;
-	if (ev->type != AA_EVENT_METHOD_FRAME || ev->method_index > 1)
-		return 0;
-	const struct aa_image_rgbaf *img = ev->linear;
-	int n = c->size * c->size;
-	double sum = 0;
-	for (int i = 0; i < n; i++)
-		sum += fabs(img->pixels[i * 4] - c->coverage[i]);
-	c->error[ev->method_index] = sum / n;
-	for (int i = 0; i < n; i++) {
-		if (ev->method_index == 0)
-			c->none[i] = img->pixels[i * 4];
-		else if (fabs(img->pixels[i * 4] - c->none[i]) > c->max_change)
-			c->max_change = fabs(img->pixels[i * 4] - c->none[i]);
-	}
-	return 0;
-}
-
-static struct capture run_pattern(enum aa_pattern2d_kind pattern, double angle)
-{
-	enum { SIZE = 64 };
-	static double coverage[SIZE * SIZE];
-	static float none[SIZE * SIZE];
-	struct aa_polygon2d polys[16];
-	int n = aa_pattern2d_make(pattern, angle, 0, 0, SIZE, SIZE, polys);
-	aa_exact_coverage(polys, n, SIZE, SIZE, coverage);
-	struct aa_scene *scene;
-	struct aa_error err = {0};
-	float fg[3] = {1, 1, 1}, bg[3] = {0, 0, 0};
-	assert_int_equal(aa_scene_from_polygons(polys, n, SIZE, SIZE, fg, bg, &scene, &err), 0);
-	const char *methods[] = {"none", "cmaa2"};
-	struct aa_job_spec spec;
-	fixture_spec(&spec, "pattern", methods, 2, SIZE, SIZE, 1, 2);
-	struct capture c = {.coverage = coverage, .size = SIZE, .none = none};
-	fixture_free(fixture_run(&spec, scene, on_frame, &c));
-	aa_scene_free(scene);
-	return c;
+	return fixture_pattern_coverage(pattern, angle, "cmaa2", 64);
 }
 
 /* Slanted edges get closer to the exact coverage, on both axes and both slopes. */
@@ -146,7 +102,7 @@ static void test_slanted_edges(void **state)
 	const int n = (int)(sizeof angles / sizeof angles[0]);
 	double sum[2] = {0, 0};
 	for (int i = 0; i < n; i++) {
-		struct capture c = run_pattern(AA_PATTERN2D_HALF_PLANE, angles[i]);
+		struct fixture_coverage c = run_pattern(AA_PATTERN2D_HALF_PLANE, angles[i]);
 		sum[0] += c.error[0] / n;
 		sum[1] += c.error[1] / n;
 		printf("  half-plane %4.0f deg: none %.4f, cmaa2 %.4f mean abs coverage error (x%.2f)\n", angles[i],
@@ -162,7 +118,7 @@ static void test_slanted_edges(void **state)
 static void test_aligned_edge_untouched(void **state)
 {
 	(void)state;
-	struct capture c = run_pattern(AA_PATTERN2D_HALF_PLANE, 0.0);
+	struct fixture_coverage c = run_pattern(AA_PATTERN2D_HALF_PLANE, 0.0);
 	printf("  half-plane 0 deg: largest change %.6f\n", c.max_change);
 	assert_true(c.max_change < 1e-6);
 	c = run_pattern(AA_PATTERN2D_HALF_PLANE, 90.0);

@@ -253,58 +253,9 @@ static void test_modes_moving_camera(void **state)
 	fixture_free(r);
 }
 
-struct capture {
-	const double *coverage;
-	int size;
-	double error[2]; /* mean abs coverage error of none and smaa */
-	double max_change;  /* largest |smaa - none| over the image */
-	int brighter, darker; /* pixels smaa made brighter / darker than none by more than 1e-3 */
-	float *none;
-};
-
-static int on_frame(const struct aa_event *ev, void *user)
+static struct fixture_coverage run_half_plane(double angle)
 {
-	struct capture *c = user;
-	if (ev->type != AA_EVENT_METHOD_FRAME || ev->method_index > 1)
-		return 0;
-	const struct aa_image_rgbaf *img = ev->linear;
-	int n = c->size * c->size;
-	double sum = 0;
-	for (int i = 0; i < n; i++)
-		sum += fabs(img->pixels[i * 4] - c->coverage[i]);
-	c->error[ev->method_index] = sum / n;
-	if (ev->method_index == 0)
-		for (int i = 0; i < n; i++)
-			c->none[i] = img->pixels[i * 4];
-	else
-		for (int i = 0; i < n; i++) {
-			double d = fabs(img->pixels[i * 4] - c->none[i]);
-			c->max_change = d > c->max_change ? d : c->max_change;
-			c->brighter += img->pixels[i * 4] > c->none[i] + 1e-3;
-			c->darker += img->pixels[i * 4] < c->none[i] - 1e-3;
-		}
-	return 0;
-}
-
-static struct capture run_half_plane(double angle)
-{
-	enum { SIZE = 64 };
-	static double coverage[SIZE * SIZE];
-	static float none[SIZE * SIZE];
-	struct aa_polygon2d polys[16];
-	int n = aa_pattern2d_make(AA_PATTERN2D_HALF_PLANE, angle, 0, 0, SIZE, SIZE, polys);
-	aa_exact_coverage(polys, n, SIZE, SIZE, coverage);
-	struct aa_scene *scene;
-	struct aa_error err = {0};
-	float fg[3] = {1, 1, 1}, bg[3] = {0, 0, 0};
-	assert_int_equal(aa_scene_from_polygons(polys, n, SIZE, SIZE, fg, bg, &scene, &err), 0);
-	const char *methods[] = {"none", "smaa"};
-	struct aa_job_spec spec;
-	fixture_spec(&spec, "half-plane", methods, 2, SIZE, SIZE, 1, 2);
-	struct capture c = {.coverage = coverage, .size = SIZE, .none = none};
-	fixture_free(fixture_run(&spec, scene, on_frame, &c));
-	aa_scene_free(scene);
-	return c;
+	return fixture_pattern_coverage(AA_PATTERN2D_HALF_PLANE, angle, "smaa", 64);
 }
 
 /* Slanted edges get closer to the exact coverage. At exactly 45 degrees the edge runs through pixel
@@ -317,7 +268,7 @@ static void test_slanted_edges(void **state)
 	const int n = (int)(sizeof angles / sizeof angles[0]);
 	double sum[2] = {0, 0};
 	for (int i = 0; i < n; i++) {
-		struct capture c = run_half_plane(angles[i]);
+		struct fixture_coverage c = run_half_plane(angles[i]);
 		sum[0] += c.error[0] / n;
 		sum[1] += c.error[1] / n;
 		printf("  half-plane %4.0f deg: none %.4f, smaa %.4f mean abs coverage error (x%.2f)\n", angles[i],
@@ -335,7 +286,7 @@ static void test_slanted_edges(void **state)
 static void test_aligned_edge_untouched(void **state)
 {
 	(void)state;
-	struct capture c = run_half_plane(0.0);
+	struct fixture_coverage c = run_half_plane(0.0);
 	printf("  half-plane 0 deg: none %.4f, smaa %.4f, largest change %.6f\n", c.error[0], c.error[1],
 	       c.max_change);
 	assert_true(c.max_change < 1e-6);
@@ -352,7 +303,7 @@ static void test_blend_reaches_both_sides(void **state)
 	(void)state;
 	const double angles[] = {10.0, 80.0};
 	for (int i = 0; i < 2; i++) {
-		struct capture c = run_half_plane(angles[i]);
+		struct fixture_coverage c = run_half_plane(angles[i]);
 		printf("  half-plane %2.0f deg: %d pixels brighter, %d darker than none\n", angles[i], c.brighter,
 		       c.darker);
 		if (c.brighter < 8 || c.darker < 8 || c.brighter < 0.8 * c.darker || c.darker < 0.8 * c.brighter)
