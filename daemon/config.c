@@ -1,6 +1,5 @@
 /* aalabd's configuration: defaults, and a file of "key = value" lines ('#' starts a comment) whose keys
  * are the long options without "--" (docs/aalabd.8). SIGHUP reads the file again. */
-#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +7,7 @@
 
 #include "daemon.h"
 #include "util/file_open.h"
+#include "util/json_text.h"
 #include "util/socket_path.h"
 #include "reference/reference_cache.h"
 
@@ -145,16 +145,6 @@ int config_set(struct config *c, const char *name, const char *value, char *err,
 	return -1;
 }
 
-static char *trim(char *s)
-{
-	while (isspace((unsigned char)*s))
-		s++;
-	size_t n = strlen(s);
-	while (n && isspace((unsigned char)s[n - 1]))
-		s[--n] = 0;
-	return s;
-}
-
 int config_load(struct config *c, const char *path, char *err, size_t err_size)
 {
 	struct aa_error aerr = {0};
@@ -170,7 +160,7 @@ int config_load(struct config *c, const char *path, char *err, size_t err_size)
 		char *hash = strchr(line, '#');
 		if (hash)
 			*hash = 0;
-		char *s = trim(line);
+		char *s = aa_trim(line);
 		if (!*s)
 			continue;
 		char *eq = strchr(s, '=');
@@ -180,7 +170,7 @@ int config_load(struct config *c, const char *path, char *err, size_t err_size)
 			break;
 		}
 		*eq = 0;
-		if (config_set(c, trim(s), trim(eq + 1), msg, sizeof msg)) {
+		if (config_set(c, aa_trim(s), aa_trim(eq + 1), msg, sizeof msg)) {
 			snprintf(err, err_size, "%s:%d: %s", path, lineno, msg);
 			rc = -1;
 			break;

@@ -12,6 +12,7 @@
 #include "types/method.h"
 #include "methods/methods.h"
 #include "util/suggest.h"
+#include "util/json_text.h"
 
 static bool has_range(const struct aa_param_def *d);
 
@@ -226,16 +227,6 @@ int aa_method_set_param(const struct aa_method *m, struct aa_method_params *para
 	return 0;
 }
 
-/* Cuts leading and trailing whitespace in place. */
-static char *trim(char *s)
-{
-	while (isspace((unsigned char)*s))
-		s++;
-	size_t n = strlen(s);
-	while (n > 0 && isspace((unsigned char)s[n - 1]))
-		s[--n] = '\0';
-	return s;
-}
 
 int aa_method_parse_params(const struct aa_method *m, const char *list, const char *path,
 			   struct aa_method_params *params, struct aa_error *err)
@@ -246,7 +237,7 @@ int aa_method_parse_params(const struct aa_method *m, const char *list, const ch
 		return fail(err, AA_ERR_INVALID, path, m->name, "parameter list is longer than %zu bytes",
 			    sizeof buf - 1);
 	memcpy(buf, list, strlen(list) + 1);
-	if (*trim(buf) == '\0')
+	if (*aa_trim(buf) == '\0')
 		return fail(err, AA_ERR_INVALID, path, m->name,
 			    "nothing after ':'; write %s alone for its defaults", m->name);
 
@@ -258,7 +249,7 @@ int aa_method_parse_params(const struct aa_method *m, const char *list, const ch
 		save = comma ? comma + 1 : NULL;
 		if (comma)
 			*comma = '\0';
-		item = trim(item);
+		item = aa_trim(item);
 		if (*item == '\0')
 			return fail(err, AA_ERR_INVALID, path, m->name, "empty item in parameter list");
 
@@ -266,8 +257,8 @@ int aa_method_parse_params(const struct aa_method *m, const char *list, const ch
 		char *eq = strchr(item, '=');
 		if (eq) {
 			*eq = '\0';
-			key = trim(item);
-			value = trim(eq + 1);
+			key = aa_trim(item);
+			value = aa_trim(eq + 1);
 			if (*key == '\0')
 				return fail(err, AA_ERR_INVALID, path, m->name, "missing parameter name before '=%s'",
 					    shown(value, shown_buf, sizeof shown_buf));
@@ -307,7 +298,7 @@ int aa_method_parse(const char *text, const char *path, const struct aa_method *
 	char *colon = strchr(buf, ':');
 	if (colon)
 		*colon = '\0';
-	const char *name = trim(buf);
+	const char *name = aa_trim(buf);
 	if (*name == '\0')
 		return fail(err, AA_ERR_INVALID, path, NULL, "method name is empty; known methods: %s",
 			    (aa_method_list_names(known, sizeof known), known));

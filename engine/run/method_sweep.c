@@ -1,8 +1,6 @@
 /* Sweeps: a method item naming several values of its parameters, expanded into one item per configuration
  * (method_sweep.h). Only the expansion is done here; every configuration is then checked by the method
  * parser, so a sweep's values are validated, and their errors worded, as a single method's are. */
-#include <ctype.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -14,17 +12,6 @@
 /* The most parameter items a method string is split into here; a longer list is left to the parser. */
 #define SWEEP_MAX_ITEMS 32
 
-static int __attribute__((format(printf, 4, 5)))
-bad(struct aa_error *err, enum aa_error_code code, const char *path, const char *fmt, ...)
-{
-	char msg[640];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(msg, sizeof msg, fmt, ap);
-	va_end(ap);
-	return aa_error_set(err, code, path, "%s", msg);
-}
-
 static json_t *single(const json_t *item)
 {
 	json_t *list = json_array();
@@ -33,15 +20,6 @@ static json_t *single(const json_t *item)
 	return list;
 }
 
-static char *trim(char *s)
-{
-	while (isspace((unsigned char)*s))
-		s++;
-	size_t n = strlen(s);
-	while (n > 0 && isspace((unsigned char)s[n - 1]))
-		s[--n] = '\0';
-	return s;
-}
 
 /* Whether name (a method's name as a job gives it) is a user method's: those are read from their files
  * and cannot be swept. */
@@ -58,7 +36,7 @@ static int past_room(struct aa_error *err, const char *path, const char *method,
 	char taken[96] = "";
 	if (before > 0)
 		snprintf(taken, sizeof taken, " (%d taken by the methods before it)", before);
-	return bad(err, AA_ERR_LIMIT, path,
+	return aa_error_set(err, AA_ERR_LIMIT, path,
 		   "%s: %s lists %d value%s, which makes the sweep %ld configurations; the job has room for %d%s: a "
 		   "job compares at most %d methods, each configuration of a sweep counted as one", method, field,
 		   values, values == 1 ? "" : "s", configurations, room, taken, AA_MAX_METHODS);
@@ -82,14 +60,14 @@ static json_t *expand_text(const json_t *item, const char *path, int room, struc
 	memcpy(buf, text, strlen(text) + 1);
 	char *colon = strchr(buf, ':');
 	if (!colon || strchr(buf, '|') < colon) {
-		bad(err, AA_ERR_INVALID, path, "\"%s\": '|' separates values of one parameter (fxaa:preset=10|39, "
+		aa_error_set(err, AA_ERR_INVALID, path, "\"%s\": '|' separates values of one parameter (fxaa:preset=10|39, "
 		    "msaa:2|4|8), not methods; list each method apart", aa_shown_text(text, shown, sizeof shown));
 		return NULL;
 	}
 	*colon = '\0';
-	const char *name = trim(buf);
+	const char *name = aa_trim(buf);
 	if (is_user(name)) {
-		bad(err, AA_ERR_INVALID, path, "user: a user method cannot be swept; list each of its configurations "
+		aa_error_set(err, AA_ERR_INVALID, path, "user: a user method cannot be swept; list each of its configurations "
 		    "as a method of its own");
 		return NULL;
 	}
@@ -109,11 +87,11 @@ static json_t *expand_text(const json_t *item, const char *path, int room, struc
 		a->key = "";
 		if (eq) {
 			*eq = '\0';
-			a->key = trim(part);
+			a->key = aa_trim(part);
 			values = eq + 1;
 		}
 		if (strchr(a->key, '|')) {
-			bad(err, AA_ERR_INVALID, path, "%s: \"%s\": '|' separates values, not parameter names: write "
+			aa_error_set(err, AA_ERR_INVALID, path, "%s: \"%s\": '|' separates values, not parameter names: write "
 			    "key=V1|V2", name, aa_shown_text(a->key, shown, sizeof shown));
 			return NULL;
 		}
@@ -132,9 +110,9 @@ static json_t *expand_text(const json_t *item, const char *path, int room, struc
 			bar = strchr(v, '|');
 			if (bar)
 				*bar++ = '\0';
-			v = trim(v);
+			v = aa_trim(v);
 			if (!*v && total > 1) {
-				bad(err, AA_ERR_INVALID, path, "%s: %s: an empty value in a sweep; write V1|V2 with a value "
+				aa_error_set(err, AA_ERR_INVALID, path, "%s: %s: an empty value in a sweep; write V1|V2 with a value "
 				    "on each side of every '|'", name, field);
 				return NULL;
 			}
@@ -175,7 +153,7 @@ static json_t *expand_object(const json_t *item, const char *path, int room, str
 	json_object_foreach((json_t *)params, key, value) {
 		snprintf(where, sizeof where, "%s.params.%s", path, aa_shown_text(key, shown, sizeof shown));
 		if (json_is_string(value) && strchr(json_string_value(value), '|')) {
-			bad(err, AA_ERR_INVALID, where, "\"%s\": in the object form a sweep is a list of values, "
+			aa_error_set(err, AA_ERR_INVALID, where, "\"%s\": in the object form a sweep is a list of values, "
 			    "[10, 20, 39]", aa_shown_text(json_string_value(value), shown, sizeof shown));
 			return NULL;
 		}
@@ -183,13 +161,13 @@ static json_t *expand_object(const json_t *item, const char *path, int room, str
 			continue;
 		const char *method = json_is_string(name) ? json_string_value(name) : "method";
 		if (is_user(method)) {
-			bad(err, AA_ERR_INVALID, where, "user: a user method cannot be swept; list each of its "
+			aa_error_set(err, AA_ERR_INVALID, where, "user: a user method cannot be swept; list each of its "
 			    "configurations as a method of its own");
 			return NULL;
 		}
 		const int count = (int)(json_array_size(value) < 1000 ? json_array_size(value) : 1000);
 		if (count == 0) {
-			bad(err, AA_ERR_INVALID, where, "%s: an empty list; a sweep names at least one value", method);
+			aa_error_set(err, AA_ERR_INVALID, where, "%s: an empty list; a sweep names at least one value", method);
 			return NULL;
 		}
 		if (n == SWEEP_MAX_ITEMS || configurations * count > room) {

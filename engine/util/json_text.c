@@ -1,5 +1,7 @@
 /* What messages about JSON input say of it: the type of a value, user text made safe to print. */
+#include <ctype.h>
 #include <math.h>
+#include <string.h>
 #include <ctype.h>
 
 #include "util/json_text.h"
@@ -39,4 +41,14 @@ const char *aa_json_string(const json_t *obj, const char *key)
 {
 	const char *s = json_string_value(json_object_get(obj, key));
 	return s ? s : "";
+}
+
+char *aa_trim(char *s)
+{
+	while (isspace((unsigned char)*s))
+		s++;
+	size_t n = strlen(s);
+	while (n > 0 && isspace((unsigned char)s[n - 1]))
+		s[--n] = '\0';
+	return s;
 }

@@ -7,6 +7,8 @@
 
 #include <jansson.h>
 
+/* Cuts leading and trailing whitespace of s in place; returns where the text now starts. */
+char *aa_trim(char *s);
 /* "an object", "a string", "an integer", ...: for "expected X, got <this>". */
 const char *aa_json_type_name(const json_t *v);
 /* User text for a path or message: at most 48 bytes, control characters as '?'. */
