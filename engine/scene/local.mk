@@ -2,7 +2,7 @@
 # OBJ, OFF, PLY and STL before assimp; glTF through assimp with its materials), textures, rigs, camera
 # paths, and the files a load read (for aalabd's scene cache).
 libaaengine_a_SOURCES += \
-	engine/scene/scene.h engine/scene/scene_load.c engine/scene/scene_json.h engine/scene/scene_json.c \
+	engine/scene/scene.h engine/scene/scene_load.c engine/scene/scene_summary.c engine/scene/scene_json.h engine/scene/scene_json.c \
 	engine/scene/mesh_procedural.h engine/scene/mesh_procedural.c engine/scene/mesh_file.h \
 	engine/scene/mesh_file.c engine/scene/gltf_check.c engine/scene/scene_rig.c \
 	engine/scene/camera_path.c engine/scene/texture.h engine/scene/texture.c engine/scene/font5x7.c \

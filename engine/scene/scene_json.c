@@ -521,3 +521,9 @@ int sj_resolve_file(struct sj *s, const char *base_dir, const char *rel, char *o
 	aa_scene_source_read(out);
 	return 0;
 }
+
+int sj_parse_error(struct aa_error *err, const char *display, const json_error_t *je)
+{
+	return aa_error_set(err, AA_ERR_INVALID, "", "%s:%d:%d: invalid JSON: %s", display, je->line, je->column,
+			    je->text);
+}

@@ -104,4 +104,7 @@ int aa_camera_from_json(struct sj *s, const json_t *obj, const struct aa_camera 
 int aa_paths_from_json(struct sj *s, const json_t *paths, const struct aa_camera *camera,
 		       struct aa_scene *scene);
 
+/* An invalid JSON document: "display:line:column: invalid JSON: what" (AA_ERR_INVALID); returns -1. */
+int sj_parse_error(struct aa_error *err, const char *display, const json_error_t *je);
+
 #endif

@@ -697,12 +697,6 @@ static int load_json(json_t *root, const char *display, const char *base_dir, co
 	return 0;
 }
 
-static int json_error(struct aa_error *err, const char *display, const json_error_t *je)
-{
-	return aa_error_set(err, AA_ERR_INVALID, "", "%s:%d:%d: invalid JSON: %s", display, je->line, je->column,
-			    je->text);
-}
-
 int aa_scene_load_string(const char *json_text, const char *display_name, const char *base_dir,
 			 struct aa_scene **out, struct aa_error *err)
 {
@@ -714,7 +708,7 @@ int aa_scene_load_string(const char *json_text, const char *display_name, const 
 				    (unsigned)AA_SCENE_MAX_FILE_BYTES);
 	json_t *root = json_loads(json_text, JSON_REJECT_DUPLICATES, &je);
 	if (!root)
-		return json_error(err, display, &je);
+		return sj_parse_error(err, display, &je);
 	if (load_json(root, display, base_dir, NULL, out, err))
 		return -1;
 	aa_scene_sources_digest(*out, json_text, strlen(json_text));
@@ -749,58 +743,9 @@ int aa_scene_load_as(const char *path, const char *shown, struct aa_scene **out,
 	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
 	char dir[PATH_MAX];
 	snprintf(dir, sizeof dir, "%s", path);
-	int rc = root ? load_json(root, shown, dirname(dir), path, out, err) : json_error(err, shown, &je);
+	int rc = root ? load_json(root, shown, dirname(dir), path, out, err) : sj_parse_error(err, shown, &je);
 	if (rc == 0)
 		aa_scene_sources_digest(*out, text, size);
 	free(text);
 	return rc;
-}
-
-/* ---------------------------------------------------------------- a summary without meshes */
-
-int aa_scene_summarize(const char *path, struct aa_scene_summary *out, struct aa_error *err)
-{
-	struct stat st;
-	json_error_t je;
-	memset(out, 0, sizeof *out);
-	if (stat(path, &st) != 0 || !S_ISREG(st.st_mode))
-		return aa_error_set(err, AA_ERR_NOT_FOUND, "", "scene file '%s' not found", path);
-	if ((uint64_t)st.st_size > AA_SCENE_MAX_FILE_BYTES)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "%s: scene file is %lld bytes, over the limit of %u", path,
-				    (long long)st.st_size, (unsigned)AA_SCENE_MAX_FILE_BYTES);
-	uint8_t *text;
-	size_t size;
-	if (aa_file_read(path, AA_SCENE_MAX_FILE_BYTES, &text, &size, err)) /* never blocks on a FIFO */
-		return -1;
-	json_t *root = json_loadb((const char *)text, size, JSON_REJECT_DUPLICATES, &je);
-	free(text);
-	if (!root)
-		return json_error(err, path, &je);
-	struct sj s;
-	sj_init(&s, path, err);
-	char stem[AA_NAME_MAX];
-	const char *b = strrchr(path, '/');
-	snprintf(stem, sizeof stem, "%s", b ? b + 1 : path);
-	if (sj_ends_with(stem, ".json"))
-		stem[strlen(stem) - 5] = '\0';
-	int rc = sj_expect_object(&s, root) || sj_string(&s, root, "name", stem, out->name, sizeof out->name) ||
-		 sj_string(&s, root, "description", "", out->description, sizeof out->description);
-	const json_t *paths = json_object_get(root, "paths");
-	if (rc == 0 && paths && !json_is_array(paths))
-		rc = sj_fail_key(&s, "paths", AA_ERR_INVALID, "expected an array of camera paths");
-	for (size_t i = 0; rc == 0 && i < json_array_size(paths) && i < AA_SCENE_MAX_PATHS; i++) {
-		char def[16];
-		snprintf(def, sizeof def, "path%zu", i);
-		size_t mark = sj_push_key(&s, "paths");
-		sj_push_index(&s, i);
-		rc = sj_expect_object(&s, json_array_get(paths, i)) ||
-		     sj_string(&s, json_array_get(paths, i), "name", def, out->paths[i], sizeof out->paths[i]);
-		sj_pop(&s, mark);
-		out->path_count += rc == 0;
-	}
-	if (rc == 0 && !paths)
-		snprintf(out->paths[out->path_count++], sizeof out->paths[0], "main");
-	out->object_count = (int)json_array_size(json_object_get(root, "objects"));
-	json_decref(root);
-	return rc ? -1 : 0;
 }
