@@ -74,6 +74,8 @@ tripped_fxaa 1 && pass "fxaa's cost gate trips, no other gate" || fail "A vs B s
 sed 's/"ssaa:4"/"ssaa:64"/' "$TMP/cost.json" >"$TMP/cost16.json"
 expect_status 0 "run C with ssaa:64" -- "$AALAB" run "$TMP/cost16.json" --label commit=C --quiet --out "$TMP/c"
 expect_status 1 "ssaa:64 in place of ssaa:4 trips the cost gate" -- "$AALAB" compare "$TMP/a" "$TMP/c"
-grep -q "tripped gpu_ms > +50% in thin-wires/default/96x54, ssaa:64" "$TMP/out" && grep -q "was ssaa:4 (paired by name): samples 4 -> 64" "$TMP/out" &&
+grep "ssaa:64" "$TMP/out" | head -6 # for the log
+# either size may be the one whose interval clears the gate on a loaded machine (both usually do)
+grep -E -q "tripped gpu_ms > \+50% in thin-wires/default/(64x36|96x54), ssaa:64" "$TMP/out" && grep -q "was ssaa:4 (paired by name): samples 4 -> 64" "$TMP/out" &&
 	pass "names the method, its pairing and the parameter" || { fail "real slowdown"; tail -5 "$TMP/out"; }
 finish
