@@ -4,4 +4,4 @@ noinst_PROGRAMS += bench/pass_cost
 bench_pass_cost_SOURCES = bench/pass_cost.c
 bench_pass_cost_LDADD = $(ENGINE_LIBS)
 EXTRA_DIST += bench/methods bench/metrics bench/floor bench/service bench/materials bench/hard-cases-long \
-	bench/fuzz bench/fuzz-runs.tsv bench/reference-cache
+	bench/fuzz bench/fuzz-runs.tsv bench/reference-cache bench/stop-latency
