@@ -144,7 +144,11 @@ void store_clear_results(struct store *s, struct job *job);  /* before a (re-)ru
 void store_remove_partial(struct store *s, struct job *job); /* a failed run's output, not its event log */
 void job_dir(const struct store *s, const struct job *job, char *out, size_t size);
 
-/* farm.c: baselines, label filters, comparisons and trends for build farms (docs/protocol.md) */
+/* farm_jobs.c: baselines and verdicts for build farms (docs/protocol.md) */
+struct aa_compare_options;
+/* Compares job (NEW) with the job its baseline names (BASE), lock not held. *base_id is set once found. */
+json_t *farm_compare_with(struct store *s, struct job *job, const char *baseline,
+			  const struct aa_compare_options *opts, char *base_id, size_t size, struct aa_error *err);
 /* The verdict of a finished job against its baseline: {"baseline", "job", "verdict", ...}, or NULL when the
  * job names none. Called by the worker without the lock, once results.json is written. */
 json_t *farm_judge_baseline(struct store *s, struct job *job);

@@ -26,10 +26,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "daemon.h"
+#include "config.h"
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
 #include "worker.h"
+#include "worker_process.h"
 #include "run/job_spec.h"
 
 #define LINE_MAX_BYTES (16u << 20) /* the process's lines: events and a summary, far below this */
