@@ -183,7 +183,8 @@ static int check_config(struct daemon *d, char *err, size_t err_size)
 static int add_listener(struct daemon *d, int fd, enum conn_kind kind, bool tcp, const char *name)
 {
 	struct listener *l = &d->t.listeners[d->t.listener_count++];
-	*l = (struct listener){.t = &d->t, .fd = fd, .kind = kind, .tcp = tcp};
+	*l = (struct listener){.t = &d->t, .fd = fd, .kind = kind, .tcp = tcp,
+				     .input = kind == CONN_HTTP ? http_input : line_input};
 	snprintf(l->name, sizeof l->name, "%s", name);
 	return 0;
 }

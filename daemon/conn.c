@@ -12,7 +12,6 @@
 #include <netinet/in.h>
 #include <unistd.h>
 
-#include "protocol_parse.h"
 #include "transport.h"
 
 static void conn_io(struct loop *loop, int fd, int events, void *data);
@@ -126,6 +125,7 @@ void conn_accept(struct loop *loop, int fd, int events, void *data)
 		}
 		c->t = t;
 		c->kind = l->kind;
+		c->input = l->input;
 		c->listener = l;
 		c->via_tcp = l->tcp;
 		c->authed = !l->tcp || !t->token[0];
@@ -279,107 +279,16 @@ void conn_send_json(struct conn *c, json_t *msg)
 	free(text);
 }
 
-static void consume(struct conn *c, size_t n)
-{
-	memmove(c->in, c->in + n, c->in_len - n);
-	c->in_len -= n;
-}
-
 bool conn_turn_over(const struct conn *c, int handled, double started_ms)
 {
 	return conn_pending(c) > c->t->cfg->client_buffer_bytes ||
 	       (handled > 0 && (handled >= REQUESTS_PER_TURN || loop_now_ms() - started_ms > TURN_MS));
 }
 
-/* Splits the input into requests: a JSON line, then the payload it announced, if any. What is handled
- * is taken off the input once, at the end (one memmove a turn, not one a request). */
-static void protocol_input(struct conn *c)
-{
-	struct transport *t = c->t;
-	size_t off = 0;
-	int handled = 0;
-	c->backlog = false;
-	while (!c->closed && c->in_len > off) {
-		char *in = c->in + off;
-		const size_t in_len = c->in_len - off;
-		if (c->discard) {
-			size_t n = c->discard < in_len ? c->discard : in_len;
-			off += n;
-			c->discard -= n;
-			continue;
-		}
-		if (conn_turn_over(c, handled, c->turn_ms)) {
-			c->backlog = memchr(in, '\n', in_len) != NULL || (c->pending && in_len >= c->payload_expected);
-			break;
-		}
-		if (c->pending) {
-			if (in_len < c->payload_expected)
-				break;
-			json_t *msg = c->pending;
-			size_t size = c->payload_expected;
-			c->pending = NULL;
-			c->payload_expected = 0;
-			handled++;
-			c->t->handlers->on_request(c, msg, json_string_value(json_object_get(msg, "op")), in, size);
-			off += size;
-			continue;
-		}
-		char *nl = memchr(in, '\n', in_len);
-		if (!nl) {
-			if (in_len > t->cfg->max_request_bytes) {
-				if (!c->discard_line)
-					protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes "
-						       "(max-request-bytes)", t->cfg->max_request_bytes);
-				c->discard_line = true;
-				c->in_len = off; /* the rest goes */
-			}
-			break;
-		}
-		size_t len = (size_t)(nl - in);
-		if (c->discard_line) { /* the tail of a refused line */
-			c->discard_line = false;
-			off += len + 1;
-			continue;
-		}
-		handled++;
-		if (len > t->cfg->max_request_bytes) {
-			protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes (max-request-bytes)",
-				       t->cfg->max_request_bytes);
-			off += len + 1;
-			continue;
-		}
-		struct protocol_line pl;
-		protocol_parse_line(in, len, t->cfg->max_request_bytes, &pl);
-		off += len + 1;
-		if (pl.kind == LINE_BLANK)
-			continue;
-		t->stats.requests_total++;
-		if (pl.kind == LINE_ERROR) {
-			protocol_error(c, pl.tag, pl.code, pl.path, "%s", pl.message);
-			protocol_line_release(&pl);
-			c->discard = pl.discard; /* a refused request's payload is skipped */
-			if (pl.close)
-				conn_close_after_flush(c);
-			continue;
-		}
-		if (pl.payload > 0) {
-			c->pending = pl.msg;
-			c->payload_expected = pl.payload;
-			continue;
-		}
-		c->t->handlers->on_request(c, pl.msg, pl.op, NULL, 0);
-	}
-	if (!c->closed && off > 0)
-		consume(c, off);
-}
-
 static void handle_input(struct conn *c)
 {
 	c->turn_ms = loop_now_ms();
-	if (c->kind == CONN_HTTP)
-		http_input(c);
-	else
-		protocol_input(c);
+	c->input(c);
 	/* more to do, and room for its replies: a later turn of the loop goes on (conns_pump_input) */
 	if (!c->closed && c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
 		loop_wake(c->t->loop);

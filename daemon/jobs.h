@@ -86,7 +86,7 @@ struct store {
 	uint64_t frames_rendered, jobs_finished;
 	double gpu_busy_seconds;
 	struct aa_upload_stats gpu_scenes; /* the engine's cache of uploaded scenes, after the last job */
-	/* allow-user-methods: the engine lives in a worker process the worker thread can kill (worker.h);
+	/* allow-user-methods: the engine lives in a worker process the worker thread can kill (worker_process.h);
 	 * engine and scenes above are then unused */
 	bool use_process;
 	int job_time_limit_s;               /* job-time-limit (reloadable): the process is killed after it */

@@ -156,6 +156,7 @@ int listen_systemd(struct transport *t, char *err, size_t err_size)
 		l->fd = fd;
 		l->from_systemd = true;
 		l->kind = name && strcmp(name, "http") == 0 ? CONN_HTTP : CONN_PROTOCOL;
+		l->input = l->kind == CONN_HTTP ? http_input : line_input;
 		l->tcp = ss.ss_family != AF_UNIX;
 		snprintf(l->name, sizeof l->name, "systemd:%s", name ? name : "unnamed");
 	}

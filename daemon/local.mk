@@ -6,11 +6,11 @@
 # handlers (protocol ops, HTTP routes, streaming, farm routes); aalabd.c, which puts them together.
 aalabd_SOURCES = \
 	daemon/config.h daemon/config.c \
-	daemon/loop.h daemon/loop.c daemon/transport.h daemon/handlers.h daemon/listen.c daemon/conn.c \
+	daemon/loop.h daemon/loop.c daemon/transport.h daemon/handlers.h daemon/listen.c daemon/conn.c daemon/line_conn.c \
 	daemon/protocol_parse.h daemon/protocol_parse.c daemon/http_parse.h daemon/http_parse.c \
 	daemon/http_conn.h daemon/http_conn.c \
 	daemon/jobs.h daemon/jobs.c daemon/scene_cache.c daemon/farm_jobs.c daemon/render_priority.h \
-	daemon/render_priority.c daemon/worker.h daemon/worker_render.c daemon/worker_run.c \
+	daemon/render_priority.c daemon/worker_job.h daemon/worker_render.c daemon/worker_run.c \
 	daemon/worker_process.h daemon/worker_process.c daemon/worker.c \
 	daemon/daemon.h daemon/protocol.c daemon/stream.h daemon/stream.c daemon/http_routes.c \
 	daemon/farm_routes.h daemon/farm_routes.c \

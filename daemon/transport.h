@@ -25,6 +25,7 @@ struct conn {
 	struct transport *t;
 	int fd;
 	enum conn_kind kind;
+	void (*input)(struct conn *c); /* its listener's framing: line_input or http_input */
 	struct listener *listener; /* NULL once the daemon stops listening (draining) */
 	bool via_tcp;             /* the bearer token must be shown in hello */
 	bool authed;
@@ -49,6 +50,9 @@ struct listener {
 	struct transport *t;
 	int fd;
 	enum conn_kind kind;
+	/* splits a connection's input into requests (line_input, http_input): set by whoever opens the
+	 * listener, so that conn.c, below both framings, calls neither by name */
+	void (*input)(struct conn *c);
 	bool tcp;
 	bool from_systemd;
 	int conn_count;           /* open connections accepted here (max-connections) */
@@ -102,7 +106,9 @@ void conns_tick(struct transport *t);
 void conns_pump_watches(struct transport *t);
 size_t conn_pending(const struct conn *c);
 
-/* http_conn.c */
+/* line_conn.c: the protocol's framing */
+void line_input(struct conn *c);
+/* http_conn.c: HTTP's framing */
 void http_input(struct conn *c);
 
 /* listen.c */

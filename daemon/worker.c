@@ -12,7 +12,7 @@
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "render_priority.h"
-#include "worker.h"
+#include "worker_job.h"
 #include "worker_process.h"
 #include "loop.h"
 #include "results/results.h"

@@ -29,7 +29,7 @@
 #include "config.h"
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
-#include "worker.h"
+#include "worker_job.h"
 #include "worker_process.h"
 #include "run/job_spec.h"
 

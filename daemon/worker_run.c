@@ -11,7 +11,7 @@
 #include "run/farm.h"
 #include "jobs.h"
 #include "methods/user_method.h"
-#include "worker.h"
+#include "worker_job.h"
 #include "loop.h"
 #include "results/results.h"
 #include "methods/methods.h"

@@ -1,7 +1,7 @@
 /* What the worker thread (worker.c) and the worker process (worker_process.c) share, below both: rendering
  * a job (worker_render.c) and the job's bookkeeping in the store (worker_run.c). */
-#ifndef AALABD_WORKER_H
-#define AALABD_WORKER_H
+#ifndef AALABD_WORKER_JOB_H
+#define AALABD_WORKER_JOB_H
 
 #include <stdbool.h>
 #include <stdio.h>
