@@ -153,8 +153,7 @@ void conn_close(struct conn *c)
 	shutdown(c->fd, SHUT_WR);
 	close(c->fd);
 	c->fd = -1;
-	if (c->watch)
-		c->t->handlers->on_close(c);
+	c->t->handlers->on_close(c); /* ends its watch, if any */
 }
 
 void conns_sweep(struct transport *t)

@@ -1,5 +1,5 @@
 /* The one table through which the transport calls the handlers: the only way a request, an HTTP route or
- * a watch stream reaches code above transport. The handlers fill it in (protocol.c, handlers_table). */
+ * a watch stream reaches code above transport. The handlers fill it in (protocol.c, daemon_handlers). */
 #ifndef AALABD_HANDLERS_H
 #define AALABD_HANDLERS_H
 
@@ -18,7 +18,7 @@ struct conn_handlers {
 	void (*on_http_request)(struct conn *c, char *target, struct http_response *r);
 	/* a connection with a watch has room for more output */
 	void (*on_writable)(struct conn *c);
-	/* the connection closed: its watch, if any, ends */
+	/* the connection closed (once): its watch, if any, ends */
 	void (*on_close)(struct conn *c);
 };
 

@@ -25,7 +25,7 @@ struct job {
 	int done, total;          /* units of work: frames x (1 + methods) */
 	struct aa_error error;    /* JOB_FAILED */
 	json_t *summary;          /* per-method summary once done */
-	json_t *compare;          /* the verdict against the job's baseline once done (daemon/farm.c), or NULL */
+	json_t *compare;          /* the verdict against the job's baseline once done (farm_jobs.c), or NULL */
 	uint64_t bytes;           /* size of the job directory once finished */
 	bool cancel;              /* asked to stop (cancel op, or drain timeout when requeue is set) */
 	bool requeue;             /* interrupted by shutdown: stays queued on disk */
@@ -47,7 +47,7 @@ struct job {
  * - A job pointer found under store.lock may be used only until that lock is released, unless its user
  *   holds the job (job_hold). A held job is never freed: retention skips it.
  * - The holders, and nothing else keeps a job pointer across unlocking:
- *     each connection watching the job (conn.watch_job), from `watch` until watch_end or its close;
+ *     each connection watching the job (conn.watch->job, stream.h), from `watch` until watch_end or its close;
  *     the GPU worker (store.running), from taking the job off the queue until its final state, job.json
  *     and event log are written (worker_run_end).
  * - job_release may free the job (the last holder applies retention): the pointer is dead after it, so
