@@ -4,7 +4,6 @@
 #include <errno.h>
 #include <netinet/in.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,10 +12,12 @@
 #include <unistd.h>
 
 #include "daemon.h"
+#include "jobs.h"
+#include "render_priority.h"
+#include "stream.h"
 #include "util/file_open.h"
 #include "util/socket_path.h"
-#include "jobs.h"
-#include "worker.h"
+#include "worker_process.h"
 
 static volatile sig_atomic_t got_term, got_hup;
 static struct loop *signal_loop;
@@ -39,18 +40,6 @@ static const char usage[] =
 	"of the configuration file is also an option (--max-connections 64, --retention-jobs 100, ...).\n"
 	"--check only checks the configuration.\n"
 	"See aalabd(8) and docs/protocol.md.\n";
-
-void daemon_log(struct daemon *d, int level, const char *fmt, ...)
-{
-	if (level > d->cfg.verbose)
-		return;
-	va_list ap;
-	va_start(ap, fmt);
-	fputs("aalabd: ", stderr);
-	vfprintf(stderr, fmt, ap);
-	fputc('\n', stderr);
-	va_end(ap);
-}
 
 /* Builds the configuration: defaults, then the file, then the command line (which wins). */
 static int read_config(int argc, char **argv, struct config *cfg, char *err, size_t err_size)
@@ -98,10 +87,10 @@ static int read_config(int argc, char **argv, struct config *cfg, char *err, siz
 static int read_token(struct daemon *d, char *err, size_t err_size)
 {
 	if (!d->cfg.token_file[0]) {
-		d->token[0] = 0;
+		d->t.token[0] = 0;
 		return 0;
 	}
-	char token[sizeof d->token] = "";
+	char token[sizeof d->t.token] = "";
 	struct stat st;
 	struct aa_error aerr = {0};
 	/* opened without blocking: a FIFO here must not freeze the loop on a reload (SIGHUP) */
@@ -151,7 +140,7 @@ static int read_token(struct daemon *d, char *err, size_t err_size)
 			 "do not count)", d->cfg.token_file);
 		return -1;
 	}
-	memcpy(d->token, token, sizeof token);
+	memcpy(d->t.token, token, sizeof token);
 	return 0;
 }
 
@@ -193,19 +182,20 @@ static int check_config(struct daemon *d, char *err, size_t err_size)
 
 static int add_listener(struct daemon *d, int fd, enum conn_kind kind, bool tcp, const char *name)
 {
-	struct listener *l = &d->listeners[d->listener_count++];
-	*l = (struct listener){.d = d, .fd = fd, .kind = kind, .tcp = tcp};
+	struct listener *l = &d->t.listeners[d->t.listener_count++];
+	*l = (struct listener){.t = &d->t, .fd = fd, .kind = kind, .tcp = tcp,
+				     .input = kind == CONN_HTTP ? http_input : line_input};
 	snprintf(l->name, sizeof l->name, "%s", name);
 	return 0;
 }
 
 static int open_listeners(struct daemon *d, int argc, char **argv, char *err, size_t err_size)
 {
-	int n = listen_systemd(d, err, err_size);
+	int n = listen_systemd(&d->t, err, err_size);
 	if (n < 0)
 		return -1;
-	for (int i = 0; i < d->listener_count; i++)
-		d->listeners[i].d = d;
+	for (int i = 0; i < d->t.listener_count; i++)
+		d->t.listeners[i].t = &d->t;
 	bool socket_flag = false;
 	for (int i = 1; i < argc; i++)
 		socket_flag |= !strcmp(argv[i], "--socket");
@@ -244,8 +234,8 @@ static int open_listeners(struct daemon *d, int argc, char **argv, char *err, si
 
 static void log_listeners(struct daemon *d)
 {
-	for (int i = 0; i < d->listener_count; i++) {
-		struct listener *l = &d->listeners[i];
+	for (int i = 0; i < d->t.listener_count; i++) {
+		struct listener *l = &d->t.listeners[i];
 		struct sockaddr_storage ss;
 		socklen_t len = sizeof ss;
 		char where[320];
@@ -311,16 +301,16 @@ static void start_drain(struct daemon *d)
 	sd_notifyf("STOPPING=1\nSTATUS=draining: finishing the running job");
 	fprintf(stderr, "aalabd: stopping: no new connections; the running job may take up to %d s\n",
 		d->cfg.drain_timeout_s);
-	for (int i = 0; i < d->listener_count; i++) {
-		loop_unwatch(d->loop, d->listeners[i].fd);
-		close(d->listeners[i].fd);
-		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)
-			unlink(d->listeners[i].name);
+	for (int i = 0; i < d->t.listener_count; i++) {
+		loop_unwatch(d->t.loop, d->t.listeners[i].fd);
+		close(d->t.listeners[i].fd);
+		if (!d->t.listeners[i].from_systemd && d->t.listeners[i].kind == CONN_PROTOCOL && !d->t.listeners[i].tcp)
+			unlink(d->t.listeners[i].name);
 	}
-	d->listener_count = 0;
+	d->t.listener_count = 0;
 	worker_request_stop(d->store, d->cfg.drain_timeout_s == 0);
 	/* the drain timeout is met within 0.1 s, not at the next 1 s tick (aalabd(8), STOPPING A JOB) */
-	loop_every(d->loop, 100, on_drain_tick, d);
+	loop_every(d->t.loop, 100, on_drain_tick, d);
 }
 
 static void check_drained(struct daemon *d)
@@ -331,11 +321,11 @@ static void check_drained(struct daemon *d)
 	if (!exited && loop_now_ms() - d->drain_started_ms > d->cfg.drain_timeout_s * 1000.0)
 		worker_request_stop(d->store, true); /* the running job stays queued for the next start */
 	bool flushed = true;
-	for (struct conn *c = d->conns; c; c = c->next)
+	for (struct conn *c = d->t.conns; c; c = c->next)
 		flushed &= c->closed || conn_pending(c) == 0;
 	/* once the worker is done, replies still queued get a short grace period */
 	if (exited && (flushed || loop_now_ms() - d->drain_started_ms > (d->cfg.drain_timeout_s + 2) * 1000.0))
-		loop_stop(d->loop);
+		loop_stop(d->t.loop);
 }
 
 static void on_wake(struct loop *loop, void *data)
@@ -351,8 +341,8 @@ static void on_wake(struct loop *loop, void *data)
 		got_hup = 0;
 		reload(d, rt->argc, rt->argv);
 	}
-	conns_pump_watches(d);
-	conns_pump_input(d); /* requests left for a later turn (conn.c) */
+	conns_pump_watches(&d->t);
+	conns_pump_input(&d->t); /* requests left for a later turn (conn.c) */
 	if (d->draining)
 		check_drained(d);
 }
@@ -361,7 +351,7 @@ static void on_tick(struct loop *loop, void *data)
 {
 	(void)loop;
 	struct runtime *rt = data;
-	conns_tick(rt->d);
+	conns_tick(&rt->d->t);
 	if (rt->watchdog_ms && loop_now_ms() - rt->last_watchdog >= rt->watchdog_ms) {
 		sd_notifyf("WATCHDOG=1");
 		rt->last_watchdog = loop_now_ms();
@@ -385,6 +375,8 @@ int main(int argc, char **argv)
 		}
 	static struct daemon daemon;
 	struct daemon *d = &daemon;
+	d->t.cfg = &d->cfg;
+	d->t.handlers = &daemon_handlers;
 	char err[1200];
 	if (read_config(argc, argv, &d->cfg, err, sizeof err) || read_token(d, err, sizeof err) ||
 	    check_config(d, err, sizeof err)) {
@@ -405,12 +397,12 @@ int main(int argc, char **argv)
 				fprintf(stderr, "aalabd: %s\n", err);
 				return 2;
 			}
-			for (int l = 0; l < d->listener_count; l++) {
-				close(d->listeners[l].fd);
-				if (!d->listeners[l].from_systemd && d->listeners[l].kind == CONN_PROTOCOL && !d->listeners[l].tcp)
-					unlink(d->listeners[l].name);
+			for (int l = 0; l < d->t.listener_count; l++) {
+				close(d->t.listeners[l].fd);
+				if (!d->t.listeners[l].from_systemd && d->t.listeners[l].kind == CONN_PROTOCOL && !d->t.listeners[l].tcp)
+					unlink(d->t.listeners[l].name);
 			}
-			d->listener_count = 0;
+			d->t.listener_count = 0;
 			/* the device start-up would open (--device), opened and closed again */
 			struct aa_engine *engine = NULL;
 			struct aa_error aerr = {0};
@@ -430,16 +422,16 @@ int main(int argc, char **argv)
 			 stat(src, &st) == 0 ? AA_SOURCE_WEB_DIR : AA_INSTALLED_WEB_DIR);
 	}
 	signal(SIGPIPE, SIG_IGN);
-	d->loop = loop_create();
-	signal_loop = d->loop;
+	d->t.loop = loop_create();
+	signal_loop = d->t.loop;
 	d->started_ms = loop_now_ms();
 	struct store *store = calloc(1, sizeof *store);
-	if (!d->loop || !store) {
+	if (!d->t.loop || !store) {
 		fprintf(stderr, "aalabd: out of memory\n");
 		return 1;
 	}
 	d->store = store;
-	store->loop = d->loop;
+	store->loop = d->t.loop;
 	store->retention_jobs = d->cfg.retention_jobs;
 	store->retention_bytes = d->cfg.retention_bytes;
 	store->max_interruptions = d->cfg.max_job_interruptions;
@@ -450,13 +442,13 @@ int main(int argc, char **argv)
 	if (store_lock_state_dir(d->cfg.state_dir, true, &lock_fd, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
 		free(store);
-		loop_destroy(d->loop);
+		loop_destroy(d->t.loop);
 		return 2;
 	}
 	if (store_open(store, d->cfg.state_dir, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);
 		free(store);
-		loop_destroy(d->loop);
+		loop_destroy(d->t.loop);
 		return 1;
 	}
 	store->scenes = scene_cache_create(d->cfg.scene_cache_bytes);
@@ -505,10 +497,10 @@ int main(int argc, char **argv)
 		goto out;
 	}
 	struct runtime rt = {.d = d, .argc = argc, .argv = argv, .watchdog_ms = sd_watchdog_interval_ms()};
-	for (int i = 0; i < d->listener_count; i++)
-		loop_watch(d->loop, d->listeners[i].fd, LOOP_READ, conn_accept, &d->listeners[i]);
-	loop_on_wake(d->loop, on_wake, &rt);
-	loop_every(d->loop, rt.watchdog_ms && rt.watchdog_ms < 1000 ? rt.watchdog_ms : 1000, on_tick, &rt);
+	for (int i = 0; i < d->t.listener_count; i++)
+		loop_watch(d->t.loop, d->t.listeners[i].fd, LOOP_READ, conn_accept, &d->t.listeners[i]);
+	loop_on_wake(d->t.loop, on_wake, &rt);
+	loop_every(d->t.loop, rt.watchdog_ms && rt.watchdog_ms < 1000 ? rt.watchdog_ms : 1000, on_tick, &rt);
 	struct sigaction sa = {.sa_handler = on_signal};
 	sigemptyset(&sa.sa_mask);
 	sigaction(SIGTERM, &sa, NULL);
@@ -521,19 +513,19 @@ int main(int argc, char **argv)
 	fprintf(stderr, "aalabd: ready (device %s, %d jobs queued%s)\n", store->device_name, queued,
 		store->use_process ? ", user methods allowed: GPU work in a worker process" : "");
 	sd_notifyf("READY=1\nSTATUS=serving; %d jobs queued\nMAINPID=%ld", queued, (long)getpid());
-	status = loop_run(d->loop) == 0 ? 0 : 1;
+	status = loop_run(d->t.loop) == 0 ? 0 : 1;
 	worker_request_stop(store, true);
 	worker_join(store);
 	fprintf(stderr, "aalabd: stopped\n");
 out:
-	for (struct conn *c = d->conns; c; c = c->next)
+	for (struct conn *c = d->t.conns; c; c = c->next)
 		conn_close(c);
-	conns_sweep(d);
+	conns_sweep(&d->t);
 	stream_cache_clear();
-	for (int i = 0; i < d->listener_count; i++) {
-		close(d->listeners[i].fd);
-		if (!d->listeners[i].from_systemd && d->listeners[i].kind == CONN_PROTOCOL && !d->listeners[i].tcp)
-			unlink(d->listeners[i].name);
+	for (int i = 0; i < d->t.listener_count; i++) {
+		close(d->t.listeners[i].fd);
+		if (!d->t.listeners[i].from_systemd && d->t.listeners[i].kind == CONN_PROTOCOL && !d->t.listeners[i].tcp)
+			unlink(d->t.listeners[i].name);
 	}
 	if (store->process) /* the worker thread never started: the process is still this thread's */
 		worker_process_stop(store);
@@ -541,6 +533,6 @@ out:
 	scene_cache_destroy(store->scenes);
 	store_close(store);
 	free(store);
-	loop_destroy(d->loop);
+	loop_destroy(d->t.loop);
 	return status;
 }

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "daemon.h"
+#include "config.h"
 #include "util/file_open.h"
 #include "util/json_text.h"
 #include "util/socket_path.h"

@@ -1,7 +1,9 @@
 /* Client connections: accepting, reading into a bounded input buffer, splitting it into JSON lines (and
  * announced binary payloads), queueing output, and the timeouts that drop idle, stalled or slow clients.
- * HTTP connections share the buffers and hand their input to http.c. */
+ * HTTP connections share the buffers and hand their input to http_conn.c. What a request means is the
+ * handlers': every call up goes through c->t->handlers (handlers.h). */
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,11 +12,32 @@
 #include <netinet/in.h>
 #include <unistd.h>
 
-#include "daemon.h"
-#include "jobs.h"
-#include "protocol_parse.h"
+#include "transport.h"
 
 static void conn_io(struct loop *loop, int fd, int events, void *data);
+
+void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
+{
+	char msg[1024];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	json_t *o = json_pack("{sb s{ss ss ss}}", "ok", 0, "error", "code", code, "message", msg, "path", path);
+	if (tag)
+		json_object_set(o, "tag", tag);
+	c->t->stats.errors_total++;
+	conn_send_json(c, o);
+}
+
+bool token_equal(const char *given, const char *want)
+{
+	size_t n = given ? strlen(given) : 0, m = strlen(want);
+	unsigned diff = n != m;
+	for (size_t i = 0; i < m; i++) /* no early exit: the time taken says nothing about the token */
+		diff |= (unsigned)(want[i] ^ (i < n ? given[i] : 0));
+	return diff == 0;
+}
 
 size_t conn_pending(const struct conn *c)
 {
@@ -48,10 +71,10 @@ static void peer_name(struct conn *c)
 }
 
 /* Open connections of one peer on one listener. */
-static int peer_connections(struct daemon *d, const struct listener *l, const char *peer)
+static int peer_connections(struct transport *t, const struct listener *l, const char *peer)
 {
 	int n = 0;
-	for (struct conn *c = d->conns; c; c = c->next)
+	for (struct conn *c = t->conns; c; c = c->next)
 		n += !c->closed && c->listener == l && !strcmp(c->peer, peer);
 	return n;
 }
@@ -74,14 +97,14 @@ void conn_accept(struct loop *loop, int fd, int events, void *data)
 {
 	(void)events;
 	struct listener *l = data;
-	struct daemon *d = l->d;
+	struct transport *t = l->t;
 	for (;;) {
 		int cfd = accept4(fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
 		if (cfd < 0)
 			return; /* EAGAIN, or a transient error (EMFILE): the next poll tries again */
 		/* Each listener has its own budget (dashboards cannot take the protocol socket's slots) and each
 		 * peer its own share of it (one careless client cannot take everyone's). */
-		if (l->conn_count >= d->cfg.max_connections) {
+		if (l->conn_count >= t->cfg->max_connections) {
 			refuse(l, cfd, "too many connections; try again later");
 			continue;
 		}
@@ -92,25 +115,26 @@ void conn_accept(struct loop *loop, int fd, int events, void *data)
 		}
 		c->fd = cfd;
 		peer_name(c);
-		if (peer_connections(d, l, c->peer) >= d->cfg.max_connections_per_peer) {
+		if (peer_connections(t, l, c->peer) >= t->cfg->max_connections_per_peer) {
 			char why[160];
 			snprintf(why, sizeof why, "too many connections from %s (max-connections-per-peer %d); "
-				 "try again later", c->peer, d->cfg.max_connections_per_peer);
+				 "try again later", c->peer, t->cfg->max_connections_per_peer);
 			refuse(l, cfd, why);
 			free(c);
 			continue;
 		}
-		c->d = d;
+		c->t = t;
 		c->kind = l->kind;
+		c->input = l->input;
 		c->listener = l;
 		c->via_tcp = l->tcp;
-		c->authed = !l->tcp || !d->token[0];
+		c->authed = !l->tcp || !t->token[0];
 		c->accepted_ms = c->last_input_ms = c->last_output_ms = loop_now_ms();
-		c->next = d->conns;
-		d->conns = c;
-		d->conn_count++;
+		c->next = t->conns;
+		t->conns = c;
+		t->conn_count++;
 		l->conn_count++;
-		d->stats.connections_total++;
+		t->stats.connections_total++;
 		loop_watch(loop, cfd, LOOP_READ, conn_io, c);
 	}
 }
@@ -120,7 +144,7 @@ void conn_close(struct conn *c)
 	if (c->closed)
 		return;
 	c->closed = true;
-	loop_unwatch(c->d->loop, c->fd);
+	loop_unwatch(c->t->loop, c->fd);
 	/* Input left unread would make close() send a reset, which can discard the reply still on its way
 	 * to the client: read what has arrived, then send FIN. */
 	char drain[4096];
@@ -129,28 +153,22 @@ void conn_close(struct conn *c)
 	shutdown(c->fd, SHUT_WR);
 	close(c->fd);
 	c->fd = -1;
-	if (c->watch_job) {
-		pthread_mutex_lock(&c->d->store->lock);
-		job_release(c->d->store, c->watch_job);
-		pthread_mutex_unlock(&c->d->store->lock);
-		c->watch_job = NULL;
-	}
+	c->t->handlers->on_close(c); /* ends its watch, if any */
 }
 
-void conns_sweep(struct daemon *d)
+void conns_sweep(struct transport *t)
 {
-	for (struct conn **p = &d->conns; *p;) {
+	for (struct conn **p = &t->conns; *p;) {
 		struct conn *c = *p;
 		if (!c->closed) {
 			p = &c->next;
 			continue;
 		}
 		*p = c->next;
-		d->conn_count--;
+		t->conn_count--;
 		if (c->listener)
 			c->listener->conn_count--;
 		json_decref(c->pending);
-		json_decref(c->watch_tag);
 		free(c->in);
 		free(c->out);
 		free(c);
@@ -160,7 +178,7 @@ void conns_sweep(struct daemon *d)
 void conn_close_after_flush(struct conn *c)
 {
 	c->close_after_flush = true;
-	if (!c->closed && !conn_pending(c) && !c->watch_job)
+	if (!c->closed && !conn_pending(c) && !c->watch)
 		conn_close(c);
 }
 
@@ -171,14 +189,14 @@ static void update_interest(struct conn *c)
 {
 	if (c->closed)
 		return;
-	if (c->close_after_flush && !conn_pending(c) && !c->watch_job) {
+	if (c->close_after_flush && !conn_pending(c) && !c->watch) {
 		conn_close(c);
 		return;
 	}
 	int mask = conn_pending(c) ? LOOP_WRITE : 0;
-	if (!c->eof && !c->close_after_flush && !c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
+	if (!c->eof && !c->close_after_flush && !c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
 		mask |= LOOP_READ;
-	loop_watch(c->d->loop, c->fd, mask, conn_io, c);
+	loop_watch(c->t->loop, c->fd, mask, conn_io, c);
 }
 
 void conn_finish_watch(struct conn *c)
@@ -204,12 +222,12 @@ static void flush(struct conn *c)
 	}
 	if (c->out_head == c->out_len)
 		c->out_head = c->out_len = 0;
-	if (!conn_pending(c) && c->close_after_flush && !c->watch_job) {
+	if (!conn_pending(c) && c->close_after_flush && !c->watch) {
 		conn_close(c);
 		return;
 	}
-	if (c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
-		loop_wake(c->d->loop); /* a paused client read its replies: its requests go on */
+	if (c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
+		loop_wake(c->t->loop); /* a paused client read its replies: its requests go on */
 	update_interest(c);
 }
 
@@ -219,7 +237,7 @@ void conn_send(struct conn *c, const void *data, size_t size)
 		return;
 	/* Watch streams stop at client_buffer_bytes (stream.c) and reading stops there too (update_interest),
 	 * so only a client that keeps asking without reading anything gets this far. */
-	if (conn_pending(c) > 0 && conn_pending(c) + size > 4 * c->d->cfg.client_buffer_bytes + (1u << 20)) {
+	if (conn_pending(c) > 0 && conn_pending(c) + size > 4 * c->t->cfg->client_buffer_bytes + (1u << 20)) {
 		fprintf(stderr, "aalabd: dropping %s: it does not read its replies\n", c->peer);
 		conn_close(c);
 		return;
@@ -260,147 +278,56 @@ void conn_send_json(struct conn *c, json_t *msg)
 	free(text);
 }
 
-static void consume(struct conn *c, size_t n)
-{
-	memmove(c->in, c->in + n, c->in_len - n);
-	c->in_len -= n;
-}
-
 bool conn_turn_over(const struct conn *c, int handled, double started_ms)
 {
-	return conn_pending(c) > c->d->cfg.client_buffer_bytes ||
+	return conn_pending(c) > c->t->cfg->client_buffer_bytes ||
 	       (handled > 0 && (handled >= REQUESTS_PER_TURN || loop_now_ms() - started_ms > TURN_MS));
-}
-
-/* Splits the input into requests: a JSON line, then the payload it announced, if any. What is handled
- * is taken off the input once, at the end (one memmove a turn, not one a request). */
-static void protocol_input(struct conn *c)
-{
-	struct daemon *d = c->d;
-	size_t off = 0;
-	int handled = 0;
-	c->backlog = false;
-	while (!c->closed && c->in_len > off) {
-		char *in = c->in + off;
-		const size_t in_len = c->in_len - off;
-		if (c->discard) {
-			size_t n = c->discard < in_len ? c->discard : in_len;
-			off += n;
-			c->discard -= n;
-			continue;
-		}
-		if (conn_turn_over(c, handled, c->turn_ms)) {
-			c->backlog = memchr(in, '\n', in_len) != NULL || (c->pending && in_len >= c->payload_expected);
-			break;
-		}
-		if (c->pending) {
-			if (in_len < c->payload_expected)
-				break;
-			json_t *msg = c->pending;
-			size_t size = c->payload_expected;
-			c->pending = NULL;
-			c->payload_expected = 0;
-			handled++;
-			protocol_request(c, msg, json_string_value(json_object_get(msg, "op")), in, size);
-			off += size;
-			continue;
-		}
-		char *nl = memchr(in, '\n', in_len);
-		if (!nl) {
-			if (in_len > d->cfg.max_request_bytes) {
-				if (!c->discard_line)
-					protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes "
-						       "(max-request-bytes)", d->cfg.max_request_bytes);
-				c->discard_line = true;
-				c->in_len = off; /* the rest goes */
-			}
-			break;
-		}
-		size_t len = (size_t)(nl - in);
-		if (c->discard_line) { /* the tail of a refused line */
-			c->discard_line = false;
-			off += len + 1;
-			continue;
-		}
-		handled++;
-		if (len > d->cfg.max_request_bytes) {
-			protocol_error(c, NULL, "too_large", "", "request line longer than %zu bytes (max-request-bytes)",
-				       d->cfg.max_request_bytes);
-			off += len + 1;
-			continue;
-		}
-		struct protocol_line pl;
-		protocol_parse_line(in, len, d->cfg.max_request_bytes, &pl);
-		off += len + 1;
-		if (pl.kind == LINE_BLANK)
-			continue;
-		d->stats.requests_total++;
-		if (pl.kind == LINE_ERROR) {
-			protocol_error(c, pl.tag, pl.code, pl.path, "%s", pl.message);
-			protocol_line_release(&pl);
-			c->discard = pl.discard; /* a refused request's payload is skipped */
-			if (pl.close)
-				conn_close_after_flush(c);
-			continue;
-		}
-		if (pl.payload > 0) {
-			c->pending = pl.msg;
-			c->payload_expected = pl.payload;
-			continue;
-		}
-		protocol_request(c, pl.msg, pl.op, NULL, 0);
-	}
-	if (!c->closed && off > 0)
-		consume(c, off);
 }
 
 static void handle_input(struct conn *c)
 {
 	c->turn_ms = loop_now_ms();
-	if (c->kind == CONN_HTTP)
-		http_input(c);
-	else
-		protocol_input(c);
+	c->input(c);
 	/* more to do, and room for its replies: a later turn of the loop goes on (conns_pump_input) */
-	if (!c->closed && c->backlog && conn_pending(c) <= c->d->cfg.client_buffer_bytes)
-		loop_wake(c->d->loop);
+	if (!c->closed && c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
+		loop_wake(c->t->loop);
 }
 
 static bool waits_for_turn(const struct conn *c)
 {
-	return !c->closed && c->backlog && !c->close_after_flush && conn_pending(c) <= c->d->cfg.client_buffer_bytes;
+	return !c->closed && c->backlog && !c->close_after_flush && conn_pending(c) <= c->t->cfg->client_buffer_bytes;
 }
 
-void conns_pump_input(struct daemon *d)
+void conns_pump_input(struct transport *t)
 {
 	/* turns in the order they have waited, for at most TURN_MS in all: then poll again (clients with new
 	 * input come first) and the rest in the next call */
 	const double start = loop_now_ms();
 	for (;;) {
 		struct conn *next = NULL;
-		for (struct conn *c = d->conns; c; c = c->next)
+		for (struct conn *c = t->conns; c; c = c->next)
 			if (waits_for_turn(c) && (!next || c->turn_ms < next->turn_ms))
 				next = c;
 		if (!next)
 			break;
 		if (loop_now_ms() - start > TURN_MS) {
-			loop_wake(d->loop);
+			loop_wake(t->loop);
 			break;
 		}
 		handle_input(next);
 		update_interest(next);
 	}
-	conns_sweep(d);
+	conns_sweep(t);
 }
 
 static void conn_read(struct conn *c)
 {
-	struct daemon *d = c->d;
+	struct transport *t = c->t;
 	for (;;) {
 		if (c->in_cap - c->in_len < 16384) {
 			size_t cap = c->in_cap ? c->in_cap * 2 : 16384;
 			/* the buffer never holds more than one request line (or payload) plus one read */
-			size_t limit = d->cfg.max_request_bytes * 2 + 65536;
+			size_t limit = t->cfg->max_request_bytes * 2 + 65536;
 			if (cap > limit)
 				cap = limit;
 			if (cap > c->in_cap) {
@@ -443,7 +370,7 @@ static void conn_read(struct conn *c)
 			return;
 		/* a client that pipelines requests without reading replies is paused, not buffered without end;
 		 * one with requests left for a later turn reads no more until they are handled */
-		if (c->backlog || conn_pending(c) > d->cfg.client_buffer_bytes)
+		if (c->backlog || conn_pending(c) > t->cfg->client_buffer_bytes)
 			break;
 	}
 	if ((c->in_len > 0 || c->pending) && c->partial_since_ms == 0)
@@ -459,28 +386,28 @@ static void conn_io(struct loop *loop, int fd, int events, void *data)
 	struct conn *c = data;
 	if (events & LOOP_WRITE) {
 		flush(c);
-		if (!c->closed && c->watch_job && conn_pending(c) < c->d->cfg.client_buffer_bytes / 2)
-			protocol_pump_watch(c);
+		if (!c->closed && c->watch && conn_pending(c) < c->t->cfg->client_buffer_bytes / 2)
+			c->t->handlers->on_writable(c);
 	}
 	if (!c->closed && (events & LOOP_READ) && !c->close_after_flush && !c->eof)
 		conn_read(c);
 	update_interest(c);
-	conns_sweep(c->d);
+	conns_sweep(c->t);
 }
 
-void conns_pump_watches(struct daemon *d)
+void conns_pump_watches(struct transport *t)
 {
-	for (struct conn *c = d->conns; c; c = c->next)
-		if (!c->closed && c->watch_job)
-			protocol_pump_watch(c);
-	conns_sweep(d);
+	for (struct conn *c = t->conns; c; c = c->next)
+		if (!c->closed && c->watch)
+			c->t->handlers->on_writable(c);
+	conns_sweep(t);
 }
 
-void conns_tick(struct daemon *d)
+void conns_tick(struct transport *t)
 {
 	double now = loop_now_ms();
-	const struct config *cfg = &d->cfg;
-	for (struct conn *c = d->conns; c; c = c->next) {
+	const struct config *cfg = t->cfg;
+	for (struct conn *c = t->conns; c; c = c->next) {
 		if (c->closed)
 			continue;
 		if (conn_pending(c) && now - c->last_output_ms > cfg->slow_client_timeout_s * 1000.0) {
@@ -501,9 +428,9 @@ void conns_tick(struct daemon *d)
 				       cfg->hello_timeout_s);
 			conn_close_after_flush(c);
 			update_interest(c);
-		} else if (!c->watch_job && !conn_pending(c) && now - c->last_input_ms > cfg->idle_timeout_s * 1000.0) {
+		} else if (!c->watch && !conn_pending(c) && now - c->last_input_ms > cfg->idle_timeout_s * 1000.0) {
 			conn_close(c);
 		}
 	}
-	conns_sweep(d);
+	conns_sweep(t);
 }

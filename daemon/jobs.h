@@ -25,7 +25,7 @@ struct job {
 	int done, total;          /* units of work: frames x (1 + methods) */
 	struct aa_error error;    /* JOB_FAILED */
 	json_t *summary;          /* per-method summary once done */
-	json_t *compare;          /* the verdict against the job's baseline once done (daemon/farm.c), or NULL */
+	json_t *compare;          /* the verdict against the job's baseline once done (farm_jobs.c), or NULL */
 	uint64_t bytes;           /* size of the job directory once finished */
 	bool cancel;              /* asked to stop (cancel op, or drain timeout when requeue is set) */
 	bool requeue;             /* interrupted by shutdown: stays queued on disk */
@@ -47,7 +47,7 @@ struct job {
  * - A job pointer found under store.lock may be used only until that lock is released, unless its user
  *   holds the job (job_hold). A held job is never freed: retention skips it.
  * - The holders, and nothing else keeps a job pointer across unlocking:
- *     each connection watching the job (conn.watch_job), from `watch` until watch_end or its close;
+ *     each connection watching the job (conn.watch->job, stream.h), from `watch` until watch_end or its close;
  *     the GPU worker (store.running), from taking the job off the queue until its final state, job.json
  *     and event log are written (worker_run_end).
  * - job_release may free the job (the last holder applies retention): the pointer is dead after it, so
@@ -86,7 +86,7 @@ struct store {
 	uint64_t frames_rendered, jobs_finished;
 	double gpu_busy_seconds;
 	struct aa_upload_stats gpu_scenes; /* the engine's cache of uploaded scenes, after the last job */
-	/* allow-user-methods: the engine lives in a worker process the worker thread can kill (worker.h);
+	/* allow-user-methods: the engine lives in a worker process the worker thread can kill (worker_process.h);
 	 * engine and scenes above are then unused */
 	bool use_process;
 	int job_time_limit_s;               /* job-time-limit (reloadable): the process is killed after it */
@@ -144,7 +144,11 @@ void store_clear_results(struct store *s, struct job *job);  /* before a (re-)ru
 void store_remove_partial(struct store *s, struct job *job); /* a failed run's output, not its event log */
 void job_dir(const struct store *s, const struct job *job, char *out, size_t size);
 
-/* farm.c: baselines, label filters, comparisons and trends for build farms (docs/protocol.md) */
+/* farm_jobs.c: baselines and verdicts for build farms (docs/protocol.md) */
+struct aa_compare_options;
+/* Compares job (NEW) with the job its baseline names (BASE), lock not held. *base_id is set once found. */
+json_t *farm_compare_with(struct store *s, struct job *job, const char *baseline,
+			  const struct aa_compare_options *opts, char *base_id, size_t size, struct aa_error *err);
 /* The verdict of a finished job against its baseline: {"baseline", "job", "verdict", ...}, or NULL when the
  * job names none. Called by the worker without the lock, once results.json is written. */
 json_t *farm_judge_baseline(struct store *s, struct job *job);

@@ -14,7 +14,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include "daemon.h"
+#include "transport.h"
 
 static int set_flags(int fd)
 {
@@ -131,7 +131,7 @@ int listen_tcp(const char *host_port, char *err, size_t err_size)
 /* LISTEN_FDS: systemd passes sockets as descriptors 3, 4, ... when LISTEN_PID is this process.
  * LISTEN_FDNAMES (FileDescriptorName= in the .socket unit) says what each is: "http" serves HTTP, "tcp"
  * the protocol with a token; otherwise a Unix socket serves the protocol and an inet one needs the token. */
-int listen_systemd(struct daemon *d, char *err, size_t err_size)
+int listen_systemd(struct transport *t, char *err, size_t err_size)
 {
 	const char *pid = getenv("LISTEN_PID"), *fds = getenv("LISTEN_FDS"), *names = getenv("LISTEN_FDNAMES");
 	if (!pid || !fds || strtol(pid, NULL, 10) != (long)getpid())
@@ -142,7 +142,7 @@ int listen_systemd(struct daemon *d, char *err, size_t err_size)
 	char *save = NULL, *name = strtok_r(namebuf, ":", &save);
 	for (int i = 0; i < n; i++, name = name ? strtok_r(NULL, ":", &save) : NULL) {
 		int fd = 3 + i;
-		if (d->listener_count == (int)(sizeof d->listeners / sizeof d->listeners[0]) || set_flags(fd)) {
+		if (t->listener_count == (int)(sizeof t->listeners / sizeof t->listeners[0]) || set_flags(fd)) {
 			snprintf(err, err_size, "LISTEN_FDS: cannot use descriptor %d", fd);
 			return -1;
 		}
@@ -152,10 +152,11 @@ int listen_systemd(struct daemon *d, char *err, size_t err_size)
 			snprintf(err, err_size, "LISTEN_FDS: descriptor %d is not a socket", fd);
 			return -1;
 		}
-		struct listener *l = &d->listeners[d->listener_count++];
+		struct listener *l = &t->listeners[t->listener_count++];
 		l->fd = fd;
 		l->from_systemd = true;
 		l->kind = name && strcmp(name, "http") == 0 ? CONN_HTTP : CONN_PROTOCOL;
+		l->input = l->kind == CONN_HTTP ? http_input : line_input;
 		l->tcp = ss.ss_family != AF_UNIX;
 		snprintf(l->name, sizeof l->name, "systemd:%s", name ? name : "unnamed");
 	}

@@ -12,23 +12,11 @@
 #include "run/farm.h"
 #include "farm_routes.h"
 #include "jobs.h"
+#include "stream.h"
 #include "methods/user_method.h"
 #include "methods/methods.h"
 #include "run/job_spec.h"
 
-void protocol_error(struct conn *c, json_t *tag, const char *code, const char *path, const char *fmt, ...)
-{
-	char msg[1024];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(msg, sizeof msg, fmt, ap);
-	va_end(ap);
-	json_t *o = json_pack("{sb s{ss ss ss}}", "ok", 0, "error", "code", code, "message", msg, "path", path);
-	if (tag)
-		json_object_set(o, "tag", tag);
-	c->d->stats.errors_total++;
-	conn_send_json(c, o);
-}
 
 static void reply(struct conn *c, json_t *tag, json_t *body)
 {
@@ -84,10 +72,10 @@ static struct job *lock_job(struct conn *c, json_t *msg, json_t *tag)
 	const char *id = get_job_id(c, msg, tag);
 	if (!id)
 		return NULL;
-	pthread_mutex_lock(&c->d->store->lock);
-	struct job *job = store_find(c->d->store, id);
+	pthread_mutex_lock(&conn_daemon(c)->store->lock);
+	struct job *job = store_find(conn_daemon(c)->store, id);
 	if (!job) {
-		pthread_mutex_unlock(&c->d->store->lock);
+		pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 		protocol_error(c, tag, "not_found", "job", "no job '%s' (finished jobs are kept up to retention-jobs)", id);
 	}
 	return job;
@@ -102,14 +90,6 @@ static json_t *limits_json(const struct config *cfg)
 			 "client_buffer_bytes", (json_int_t)cfg->client_buffer_bytes, "max_frames", AA_MAX_FRAMES);
 }
 
-bool token_equal(const char *given, const char *want)
-{
-	size_t n = given ? strlen(given) : 0, m = strlen(want);
-	unsigned diff = n != m;
-	for (size_t i = 0; i < m; i++) /* no early exit: the time taken says nothing about the token */
-		diff |= (unsigned)(want[i] ^ (i < n ? given[i] : 0));
-	return diff == 0;
-}
 
 static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 {
@@ -127,9 +107,9 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 			       "send the highest version the client speaks", AALABD_PROTOCOL_VERSION);
 		return;
 	}
-	if (c->via_tcp && c->d->token[0]) {
+	if (c->via_tcp && c->t->token[0]) {
 		const char *given = json_string_value(json_object_get(msg, "token"));
-		if (!token_equal(given, c->d->token)) {
+		if (!token_equal(given, c->t->token)) {
 			protocol_error(c, tag, "unauthorized", "token", "%s: TCP clients send the bearer token of the "
 				       "daemon's token file in hello (aalab: AALAB_TOKEN, AALAB_TOKEN_FILE or --token-file)",
 				       given && *given ? "wrong token" : "no token");
@@ -140,7 +120,7 @@ static void op_hello(struct conn *c, json_t *msg, json_t *tag)
 	}
 	reply(c, tag, json_pack("{si s[i] ss so s[sss] ss}", "protocol", AALABD_PROTOCOL_VERSION, "versions",
 				AALABD_PROTOCOL_VERSION, "server", "aalabd " PACKAGE_VERSION, "limits",
-				limits_json(&c->d->cfg), "frame_formats", "png", "rgba8", "rgba16f", "peer", c->peer));
+				limits_json(&conn_daemon(c)->cfg), "frame_formats", "png", "rgba8", "rgba16f", "peer", c->peer));
 }
 
 static double method_samples(const struct aa_method_spec *m)
@@ -191,7 +171,7 @@ static json_t *parse_bundle(struct conn *c, json_t *tag, const char *payload, si
 static void submit_parsed(struct conn *c, json_t *tag, struct aa_job_spec *spec, const char *scene_text,
 			  size_t scene_size, const json_t *files)
 {
-	struct daemon *d = c->d;
+	struct daemon *d = conn_daemon(c);
 	struct aa_error err = {0};
 	char file[1024];
 	if (scene_text && spec->is_suite) {
@@ -280,7 +260,7 @@ static void submit_parsed(struct conn *c, json_t *tag, struct aa_job_spec *spec,
 static void op_submit(struct conn *c, json_t *msg, json_t *tag, const char *payload, size_t size)
 {
 	static const char *const keys[] = {"job", NULL};
-	struct daemon *d = c->d;
+	struct daemon *d = conn_daemon(c);
 	if (check_keys(c, msg, tag, keys))
 		return;
 	json_t *job = json_object_get(msg, "job");
@@ -343,7 +323,7 @@ static void op_status(struct conn *c, json_t *msg, json_t *tag)
 	if (!job)
 		return;
 	json_t *o = job_to_json(job);
-	pthread_mutex_unlock(&c->d->store->lock);
+	pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 	reply(c, tag, json_pack("{so}", "job", o));
 }
 
@@ -370,12 +350,12 @@ static void op_list(struct conn *c, json_t *msg, json_t *tag)
 		return;
 	}
 	json_t *arr = json_array();
-	pthread_mutex_lock(&c->d->store->lock);
+	pthread_mutex_lock(&conn_daemon(c)->store->lock);
 	int total = 0;
-	for (struct job *j = c->d->store->jobs; j; j = j->next)
+	for (struct job *j = conn_daemon(c)->store->jobs; j; j = j->next)
 		total += (!st || !strcmp(job_state_name(j->state), json_string_value(st))) && farm_filter_matches(filter, j);
 	int skip = total > limit ? total - (int)limit : 0; /* the newest `limit` jobs */
-	for (struct job *j = c->d->store->jobs; j; j = j->next) {
+	for (struct job *j = conn_daemon(c)->store->jobs; j; j = j->next) {
 		if ((st && strcmp(job_state_name(j->state), json_string_value(st))) || !farm_filter_matches(filter, j))
 			continue;
 		if (skip > 0) {
@@ -384,7 +364,7 @@ static void op_list(struct conn *c, json_t *msg, json_t *tag)
 		}
 		json_array_append_new(arr, job_to_json(j));
 	}
-	pthread_mutex_unlock(&c->d->store->lock);
+	pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 	farm_filter_free(filter);
 	reply(c, tag, json_pack("{so}", "jobs", arr));
 }
@@ -398,14 +378,14 @@ static void op_cancel(struct conn *c, json_t *msg, json_t *tag)
 	if (!job)
 		return;
 	struct aa_error err = {0};
-	int rc = store_cancel(c->d->store, job, &err);
+	int rc = store_cancel(conn_daemon(c)->store, job, &err);
 	json_t *o = rc ? NULL : json_pack("{ss ss}", "job", job->id, "state", job_state_name(job->state));
-	pthread_mutex_unlock(&c->d->store->lock);
+	pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 	if (rc) {
 		protocol_error(c, tag, "invalid", "job", "%s", err.message);
 		return;
 	}
-	conns_pump_watches(c->d);
+	conns_pump_watches(c->t);
 	reply(c, tag, o);
 }
 
@@ -464,27 +444,33 @@ static void op_watch(struct conn *c, json_t *msg, json_t *tag)
 		protocol_error(c, tag, "bad_request", "frames", "expected none, png, rgba8 or rgba16f");
 		return;
 	}
-	if (c->watch_job) {
+	if (c->watch) {
 		protocol_error(c, tag, "busy", "", "this connection is already watching job %s; open another",
-			       c->watch_job->id);
+			       c->watch->job->id);
+		return;
+	}
+	struct watch *w = calloc(1, sizeof *w);
+	if (!w) {
+		protocol_error(c, tag, "internal", "", "out of memory");
 		return;
 	}
 	struct job *job = lock_job(c, msg, tag);
-	if (!job)
+	if (!job) {
+		free(w);
 		return;
-	store_load_events(c->d->store, job);
+	}
+	store_load_events(conn_daemon(c)->store, job);
 	job_hold(job);
-	c->watch_job = job;
-	c->watch_next_seq = after ? (unsigned long)json_integer_value(after) + 1 : 1;
-	c->watch_frames = fmt;
-	c->frames_dropped = 0;
-	json_decref(c->watch_tag);
-	c->watch_tag = json_incref(tag);
+	w->job = job;
+	w->next_seq = after ? (unsigned long)json_integer_value(after) + 1 : 1;
+	w->frames = fmt;
+	w->tag = json_incref(tag);
+	c->watch = w;
 	json_t *o = json_pack("{ss ss sI sI}", "job", job->id, "state", job_state_name(job->state), "events",
 			      (json_int_t)job->event_count, "run", (json_int_t)job->run);
-	pthread_mutex_unlock(&c->d->store->lock);
+	pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 	reply(c, tag, o);
-	protocol_pump_watch(c);
+	stream_pump_watch(c);
 }
 
 static void op_ping(struct conn *c, json_t *msg, json_t *tag)
@@ -505,7 +491,7 @@ static const struct op_entry ops[] = {
 	{"scenes", op_scenes}, {"methods", op_methods}, {"watch", op_watch}, {"get", op_get},
 };
 
-void protocol_request(struct conn *c, json_t *msg, const char *op, const char *payload, size_t payload_size)
+static void protocol_request(struct conn *c, json_t *msg, const char *op, const char *payload, size_t payload_size)
 {
 	/* the envelope (object, tag, op, payload only with submit) was checked by protocol_parse_line */
 	json_t *tag = json_object_get(msg, "tag");
@@ -525,3 +511,10 @@ void protocol_request(struct conn *c, json_t *msg, const char *op, const char *p
 	}
 	json_decref(msg);
 }
+
+const struct conn_handlers daemon_handlers = {
+	.on_request = protocol_request,
+	.on_http_request = http_route,
+	.on_writable = stream_pump_watch,
+	.on_close = stream_end_watch,
+};

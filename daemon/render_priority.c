@@ -10,7 +10,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "worker.h"
+#include "render_priority.h"
 
 int render_nice_value(int render_nice)
 {

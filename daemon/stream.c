@@ -10,36 +10,11 @@
 #include <unistd.h>
 
 #include "daemon.h"
+#include "http_conn.h"
 #include "jobs.h"
+#include "stream.h"
 #include "image/image.h"
 
-int read_whole_file(const char *path, size_t max, char **data, size_t *size)
-{
-	int fd = open(path, O_RDONLY | O_CLOEXEC);
-	struct stat st;
-	if (fd < 0)
-		return -1;
-	if (fstat(fd, &st) < 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size > max) {
-		close(fd);
-		return -1;
-	}
-	char *buf = malloc((size_t)st.st_size + 1);
-	size_t got = 0;
-	while (buf && got < (size_t)st.st_size) {
-		ssize_t n = read(fd, buf + got, (size_t)st.st_size - got);
-		if (n <= 0)
-			break;
-		got += (size_t)n;
-	}
-	close(fd);
-	if (!buf || got != (size_t)st.st_size) {
-		free(buf);
-		return -1;
-	}
-	*data = buf;
-	*size = got;
-	return 0;
-}
 
 static bool name_ok(const char *s, size_t n)
 {
@@ -89,25 +64,6 @@ int job_file_path(const char *jobs_dir, const char *id, const char *rel, char *o
 	return (size_t)snprintf(out, size, "%s/%s/%s", jobs_dir, id, rel) < size ? 0 : -1;
 }
 
-const char *file_content_type(const char *rel)
-{
-	size_t n = strlen(rel);
-	if (n > 5 && !strcmp(rel + n - 5, ".json"))
-		return "application/json";
-	if (n > 6 && !strcmp(rel + n - 6, ".jsonl"))
-		return "application/jsonl";
-	if (n > 5 && !strcmp(rel + n - 5, ".html"))
-		return "text/html; charset=utf-8";
-	if (n > 4 && !strcmp(rel + n - 4, ".png"))
-		return "image/png";
-	if (n > 4 && !strcmp(rel + n - 4, ".exr"))
-		return "image/x-exr";
-	if (n > 3 && !strcmp(rel + n - 3, ".js"))
-		return "text/javascript; charset=utf-8";
-	if (n > 4 && !strcmp(rel + n - 4, ".css"))
-		return "text/css; charset=utf-8";
-	return "application/octet-stream";
-}
 
 /* Frames as sent, shared by every watcher: a frame is read (and for rgba8 decoded) once, not once per
  * watcher, and recent ones are kept (up to FRAME_CACHE_SLOTS frames and FRAME_CACHE_BYTES), since
@@ -143,7 +99,7 @@ static const struct cached_frame *frame_get(struct conn *c, const char *path, co
 	struct cached_frame *slot = &frame_cache[0];
 	for (int i = 0; i < FRAME_CACHE_SLOTS; i++) {
 		struct cached_frame *f = &frame_cache[i];
-		if (f->data && f->format == c->watch_frames && f->file_size == st->st_size &&
+		if (f->data && f->format == c->watch->frames && f->file_size == st->st_size &&
 		    f->mtime.tv_sec == st->st_mtim.tv_sec && f->mtime.tv_nsec == st->st_mtim.tv_nsec &&
 		    !strcmp(f->path, path)) {
 			f->last_use = ++frame_cache_clock;
@@ -152,9 +108,9 @@ static const struct cached_frame *frame_get(struct conn *c, const char *path, co
 		if (!f->data || f->last_use < slot->last_use)
 			slot = f;
 	}
-	struct cached_frame fresh = {.format = c->watch_frames, .file_size = st->st_size, .mtime = st->st_mtim};
+	struct cached_frame fresh = {.format = c->watch->frames, .file_size = st->st_size, .mtime = st->st_mtim};
 	snprintf(fresh.path, sizeof fresh.path, "%s", path);
-	if (c->watch_frames == FRAMES_RGBA8) {
+	if (c->watch->frames == FRAMES_RGBA8) {
 		struct aa_image_rgba8 img = {0};
 		struct aa_error err = {0};
 		if (aa_image_read_rgba8(path, &img, &err))
@@ -164,10 +120,10 @@ static const struct cached_frame *frame_get(struct conn *c, const char *path, co
 		fresh.width = img.width;
 		fresh.height = img.height;
 	} else { /* PNG bytes, or raw RGBA16F halves stored as they are sent */
-		if (read_whole_file(path, c->d->cfg.client_buffer_bytes * 4, &fresh.data, &fresh.size))
+		if (read_whole_file(path, c->t->cfg->client_buffer_bytes * 4, &fresh.data, &fresh.size))
 			return NULL;
-		fresh.width = c->watch_job->spec.width;
-		fresh.height = c->watch_job->spec.height;
+		fresh.width = c->watch->job->spec.width;
+		fresh.height = c->watch->job->spec.height;
 	}
 	free(slot->data);
 	*slot = fresh;
@@ -193,8 +149,8 @@ static const struct cached_frame *frame_get(struct conn *c, const char *path, co
 /* The bytes a frame will take in the stream, known before reading it. */
 static size_t frame_size_estimate(const struct conn *c, const struct stat *st)
 {
-	const struct aa_job_spec *spec = &c->watch_job->spec;
-	if (c->watch_frames == FRAMES_RGBA8)
+	const struct aa_job_spec *spec = &c->watch->job->spec;
+	if (c->watch->frames == FRAMES_RGBA8)
 		return (size_t)spec->width * spec->height * 4;
 	return (size_t)st->st_size;
 }
@@ -204,8 +160,8 @@ static void send_event(struct conn *c, char *line)
 {
 	json_t *ev = NULL;
 	const char *image = NULL;
-	if (c->watch_frames != FRAMES_NONE && (ev = json_loads(line, 0, NULL)))
-		image = json_string_value(json_object_get(ev, c->watch_frames == FRAMES_RGBA16F ? "linear" : "image"));
+	if (c->watch->frames != FRAMES_NONE && (ev = json_loads(line, 0, NULL)))
+		image = json_string_value(json_object_get(ev, c->watch->frames == FRAMES_RGBA16F ? "linear" : "image"));
 	if (!image) {
 		size_t n = strlen(line);
 		line[n] = '\n'; /* the caller's copy: its terminator becomes the newline */
@@ -215,67 +171,84 @@ static void send_event(struct conn *c, char *line)
 	}
 	char path[1400];
 	struct stat st;
-	bool have = job_file_path(c->d->store->dir, c->watch_job->id, image, path, sizeof path) == 0 &&
+	bool have = job_file_path(conn_daemon(c)->store->dir, c->watch->job->id, image, path, sizeof path) == 0 &&
 		    stat(path, &st) == 0;
 	/* A client that is behind loses frames, never events, and never slows the renderer. The check comes
 	 * before the frame is read or decoded, so a stalled watcher costs the loop no more than an idle one. */
-	if (have && conn_pending(c) > 0 && conn_pending(c) + frame_size_estimate(c, &st) > c->d->cfg.client_buffer_bytes) {
+	if (have && conn_pending(c) > 0 && conn_pending(c) + frame_size_estimate(c, &st) > c->t->cfg->client_buffer_bytes) {
 		have = false;
-		c->frames_dropped++;
-		c->d->stats.frames_dropped_total++;
+		c->watch->frames_dropped++;
+		c->t->stats.frames_dropped_total++;
 		json_object_set_new(ev, "frame_dropped", json_string("client too slow: frame not sent"));
 	}
 	const struct cached_frame *frame = have ? frame_get(c, path, &st) : NULL;
 	if (frame) {
 		/* raw RGBA16F has no header: a suite's event carries its case's size, others the job's */
-		if (c->watch_frames == FRAMES_RGBA8 || (c->watch_frames == FRAMES_RGBA16F && !json_object_get(ev, "width"))) {
+		if (c->watch->frames == FRAMES_RGBA8 || (c->watch->frames == FRAMES_RGBA16F && !json_object_get(ev, "width"))) {
 			json_object_set_new(ev, "width", json_integer(frame->width));
 			json_object_set_new(ev, "height", json_integer(frame->height));
 		}
 		json_object_set_new(ev, "payload", json_integer((json_int_t)frame->size));
 		static const char *const formats[] = {"none", "png", "rgba8", "rgba16f"};
-		json_object_set_new(ev, "payload_format", json_string(formats[c->watch_frames]));
+		json_object_set_new(ev, "payload_format", json_string(formats[c->watch->frames]));
 	}
 	conn_send_json(c, ev);
 	if (frame)
 		conn_send(c, frame->data, frame->size);
 }
 
-void protocol_pump_watch(struct conn *c)
+void stream_pump_watch(struct conn *c)
 {
-	struct daemon *d = c->d;
+	struct daemon *d = conn_daemon(c);
 	struct store *s = d->store;
-	while (!c->closed && c->watch_job && conn_pending(c) < d->cfg.client_buffer_bytes) {
+	while (!c->closed && c->watch && conn_pending(c) < d->cfg.client_buffer_bytes) {
 		pthread_mutex_lock(&s->lock);
-		struct job *job = c->watch_job;
+		struct job *job = c->watch->job;
 		char *line = NULL;
 		bool end = false;
 		char id[sizeof job->id];
 		snprintf(id, sizeof id, "%s", job->id);
-		if (c->watch_next_seq <= job->event_count)
-			line = strdup(job->events[c->watch_next_seq - 1]);
+		if (c->watch->next_seq <= job->event_count)
+			line = strdup(job->events[c->watch->next_seq - 1]);
 		else
 			end = job->log_complete;
+		struct watch *w = c->watch;
 		if (end) {
 			job_release(s, job); /* the job may be gone from here on (jobs.h) */
-			c->watch_job = NULL;
+			c->watch = NULL;
 		}
 		pthread_mutex_unlock(&s->lock);
 		if (end) {
 			json_t *o = json_pack("{ss ss sI}", "event", "watch_end", "job", id, "frames_dropped",
-					      (json_int_t)c->frames_dropped);
-			if (c->watch_tag)
-				json_object_set(o, "tag", c->watch_tag);
+					      (json_int_t)w->frames_dropped);
+			if (w->tag)
+				json_object_set(o, "tag", w->tag);
+			json_decref(w->tag);
+			free(w);
 			conn_send_json(c, o);
 			conn_finish_watch(c);
 			return;
 		}
 		if (!line)
 			return;
-		c->watch_next_seq++;
+		c->watch->next_seq++;
 		send_event(c, line);
 		free(line);
 	}
+}
+
+void stream_end_watch(struct conn *c)
+{
+	struct watch *w = c->watch;
+	if (!w)
+		return;
+	struct store *s = conn_daemon(c)->store;
+	pthread_mutex_lock(&s->lock);
+	job_release(s, w->job);
+	pthread_mutex_unlock(&s->lock);
+	c->watch = NULL;
+	json_decref(w->tag);
+	free(w);
 }
 
 static void list_files(const char *base, const char *rel, json_t *out, int depth)
@@ -326,10 +299,10 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 		protocol_error(c, tag, "bad_request", "file", "expected a file name such as results.json");
 		return;
 	}
-	pthread_mutex_lock(&c->d->store->lock);
-	struct job *job = store_find(c->d->store, id);
+	pthread_mutex_lock(&conn_daemon(c)->store->lock);
+	struct job *job = store_find(conn_daemon(c)->store, id);
 	enum job_state state = job ? job->state : JOB_QUEUED;
-	pthread_mutex_unlock(&c->d->store->lock);
+	pthread_mutex_unlock(&conn_daemon(c)->store->lock);
 	if (!job) {
 		protocol_error(c, tag, "not_found", "job", "no job '%s'", id);
 		return;
@@ -337,7 +310,7 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 	char path[1400];
 	if (!file) {
 		json_t *files = json_array();
-		snprintf(path, sizeof path, "%s/%s", c->d->store->dir, id);
+		snprintf(path, sizeof path, "%s/%s", conn_daemon(c)->store->dir, id);
 		list_files(path, "", files, 0);
 		json_t *o = json_pack("{ss ss so}", "job", id, "state", job_state_name(state), "files", files);
 		json_object_set_new(o, "ok", json_true());
@@ -346,7 +319,7 @@ void op_get(struct conn *c, json_t *msg, json_t *tag)
 		conn_send_json(c, o);
 		return;
 	}
-	if (job_file_path(c->d->store->dir, id, file, path, sizeof path)) {
+	if (job_file_path(conn_daemon(c)->store->dir, id, file, path, sizeof path)) {
 		protocol_error(c, tag, "invalid", "file", "not a file of a job: results.json, report.html, events.jsonl, "
 			       "scene.json, method-files.json, frames|diff|flip/NAME/NNNN.png, linear/NAME/NNNN.rgba16f, "
 			       "exr/NAME/NNNN.exr or viewer/NNNN.js");

@@ -6,7 +6,7 @@
  *   process -> thread: {"type": "event", "event": {...}} and {"type": "progress", "done", "total"}, each
  *                      answered {"stop": bool} (the job was cancelled); then {"type": "done", ...}
  * The process renders into the job's directory as the thread would; the thread keeps the store, the event
- * log and the bookkeeping (worker.c), so the protocol and the store are what they are without it. At the
+ * log and the bookkeeping (worker_run.c), so the protocol and the store are what they are without it. At the
  * job's time limit, when the process dies, or when a cancelled job does not stop, the thread kills it,
  * fails (or cancels) the job with the reason and starts a fresh process for the next job. */
 #include <errno.h>
@@ -26,10 +26,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "daemon.h"
+#include "config.h"
 #include "methods/glsl_compile.h"
 #include "methods/user_method.h"
-#include "worker.h"
+#include "worker_job.h"
+#include "worker_process.h"
 #include "run/job_spec.h"
 
 #define LINE_MAX_BYTES (16u << 20) /* the process's lines: events and a summary, far below this */

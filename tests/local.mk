@@ -51,7 +51,7 @@ DURABILITY_TESTS = tests/durability/results_atomic.py tests/durability/daemon_at
 TESTS += $(DURABILITY_TESTS)
 EXTRA_DIST += $(DURABILITY_TESTS) tests/durability/durability_lib.py
 
-# the layout: no include goes up a layer of engine/ (docs/architecture.md, "Layers")
+# the layout: no include goes up a layer of engine/ or a group of daemon/ (docs/architecture.md)
 TESTS += tests/layout/layers.py
 EXTRA_DIST += tests/layout/layers.py
 

@@ -40,7 +40,7 @@ try:
     jobdir = os.path.join(d.state, "jobs", a)
     left = [p for p in ("frames", "linear", "diff", "flip", "results.json") if os.path.exists(os.path.join(jobdir, p))]
     check(not left, "its partial output is removed (%s)" % left)
-    # status says failed only once job.json and the log are written (daemon/worker.c): read them at once
+    # status says failed only once job.json and the log are written (daemon/worker_run.c): read them at once
     with open(os.path.join(jobdir, "job.json")) as f:
         saved = json.load(f)
     with open(os.path.join(jobdir, "events.jsonl")) as f:

@@ -50,7 +50,7 @@ try:
     for i in range(3):
         ids.append(c.request({"op": "submit", "job": dict(SMALL_JOB, frames=1)})["job"])
         wait_state(c, ids[-1], ["done"])
-    # status says done only once retention has run in the same step (daemon/worker.c): asked at once
+    # status says done only once retention has run in the same step (daemon/worker_run.c): asked at once
     r = c.request({"op": "status", "job": ids[0]})
     check(not r.get("ok") and r["error"]["code"] == "not_found", "the oldest finished job is gone (retention-jobs 2)")
     check(not os.path.exists(os.path.join(d.state, "jobs", ids[0])), "and its directory")

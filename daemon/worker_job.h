@@ -1,10 +1,11 @@
-/* The GPU worker's two halves: rendering a job (in the worker thread, or in the worker process when user
- * methods are allowed) and the job's bookkeeping in the store (always in the worker thread). */
-#ifndef AALABD_WORKER_H
-#define AALABD_WORKER_H
+/* What the worker thread (worker.c) and the worker process (worker_process.c) share, below both: rendering
+ * a job (worker_render.c) and the job's bookkeeping in the store (worker_run.c). */
+#ifndef AALABD_WORKER_JOB_H
+#define AALABD_WORKER_JOB_H
 
 #include <stdbool.h>
 #include <stdio.h>
+#include <time.h>
 
 #include "jobs.h"
 
@@ -44,22 +45,12 @@ int worker_progress(struct worker_run *run, int done, int total);
  * the job may already be deleted by retention. */
 void worker_run_end(struct worker_run *run, struct worker_outcome *out);
 
-/* worker_process.c: the worker process (allow-user-methods). */
-/* Starts it and waits until it has opened the device (aalabd's start-up); -1 with a message in err. */
-int worker_process_start(struct store *s, char *err, size_t err_size);
-/* Runs one job in it (the worker thread), stopping it at the job's time limit or when it dies. */
-void worker_process_run_job(struct store *s, struct job *job);
-/* Ends it (the worker thread, at shutdown). */
-void worker_process_stop(struct store *s);
-/* The process's main: `aalabd --worker-process FD [--state-dir DIR] [--device SEL] [--scene-cache-bytes N]`. */
-int worker_process_main(int argc, char **argv);
-
-/* render_priority.c: the rendering threads' nice value, render_nice above the calling thread's (at most 19);
- * setting it on the calling thread; the engine created on a thread at that value, so that the device's
- * threads start there (aalabd(8), render-nice). */
-int render_nice_value(int render_nice);
-void render_priority_apply(int nice_value);
-int render_engine_create(const struct aa_engine_options *options, int nice_value, struct aa_engine **engine,
-			 struct aa_error *err);
+/* Wall-clock seconds: job times (started_at, finished_at) and GPU busy time. */
+static inline double worker_now_s(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return ts.tv_sec + ts.tv_nsec / 1e9;
+}
 
 #endif

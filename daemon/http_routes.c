@@ -1,5 +1,5 @@
-/* The HTTP/1.1 subset for dashboards: GET and HEAD, keep-alive, no request bodies. Routes: the dashboard
- * page (web/), /healthz, /metrics (Prometheus text), and /v1/jobs... (JSON and stored files). */
+/* The HTTP routes (handlers): the dashboard page (web/), /healthz, /metrics (Prometheus text),
+ * /v1/jobs... (JSON and stored files) and the farm routes (farm_routes.c). Framing is http_conn.c's. */
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,62 +9,10 @@
 
 #include "daemon.h"
 #include "farm_routes.h"
-#include "http_parse.h"
+#include "http_conn.h"
+#include "stream.h"
 #include "jobs.h"
 #include "results/results.h"
-
-struct response {
-	int status;
-	const char *type;
-	char *body;          /* malloc'ed */
-	size_t size;
-	const char *extra;   /* more header lines, each ending in \r\n */
-};
-
-static const char *reason(int status)
-{
-	switch (status) {
-	case 200: return "OK";
-	case 400: return "Bad Request";
-	case 401: return "Unauthorized";
-	case 404: return "Not Found";
-	case 405: return "Method Not Allowed";
-	case 409: return "Conflict";
-	case 500: return "Internal Server Error";
-	case 414: return "URI Too Long";
-	case 505: return "HTTP Version Not Supported";
-	case 431: return "Request Header Fields Too Large";
-	case 503: return "Service Unavailable";
-	default: return "Error";
-	}
-}
-
-static void text(struct response *r, int status, const char *msg)
-{
-	r->status = status;
-	r->type = "text/plain; charset=utf-8";
-	r->body = strdup(msg);
-	r->size = r->body ? strlen(r->body) : 0;
-}
-
-static void json_body(struct response *r, json_t *o)
-{
-	r->status = 200;
-	r->type = "application/json";
-	r->body = json_dumps(o, JSON_COMPACT);
-	r->size = r->body ? strlen(r->body) : 0;
-	json_decref(o);
-}
-
-static void file_body(struct response *r, const char *path, const char *type)
-{
-	if (read_whole_file(path, 1u << 30, &r->body, &r->size)) {
-		text(r, 404, "not found\n");
-		return;
-	}
-	r->status = 200;
-	r->type = type;
-}
 
 /* Decodes %XX in place; -1 on a bad escape or an encoded NUL or '/'. */
 static int percent_decode(char *s)
@@ -88,7 +36,7 @@ static int percent_decode(char *s)
 	return 0;
 }
 
-static void metrics(struct daemon *d, struct response *r)
+static void metrics(struct daemon *d, struct http_response *r)
 {
 	struct store *s = d->store;
 	struct scene_cache_stats cs;
@@ -102,7 +50,7 @@ static void metrics(struct daemon *d, struct response *r)
 	size_t size = 0;
 	FILE *f = open_memstream(&buf, &size);
 	if (!f) {
-		text(r, 503, "out of memory\n");
+		http_text(r, 503, "out of memory\n");
 		return;
 	}
 	pthread_mutex_lock(&s->lock);
@@ -172,9 +120,9 @@ static void metrics(struct daemon *d, struct response *r)
 		"# TYPE aalab_frames_dropped_total counter\naalab_frames_dropped_total %llu\n"
 		"# HELP aalab_uptime_seconds Seconds since the daemon started.\n# TYPE aalab_uptime_seconds gauge\n"
 		"aalab_uptime_seconds %.1f\n",
-		d->conn_count, (unsigned long long)d->stats.connections_total,
-		(unsigned long long)d->stats.requests_total, (unsigned long long)d->stats.errors_total,
-		(unsigned long long)d->stats.http_requests_total, (unsigned long long)d->stats.frames_dropped_total,
+		d->t.conn_count, (unsigned long long)d->t.stats.connections_total,
+		(unsigned long long)d->t.stats.requests_total, (unsigned long long)d->t.stats.errors_total,
+		(unsigned long long)d->t.stats.http_requests_total, (unsigned long long)d->t.stats.frames_dropped_total,
 		(loop_now_ms() - d->started_ms) / 1000.0);
 	fclose(f);
 	r->status = 200;
@@ -183,13 +131,13 @@ static void metrics(struct daemon *d, struct response *r)
 	r->size = size;
 }
 
-static void job_route(struct daemon *d, char *rest, struct response *r)
+static void job_route(struct daemon *d, char *rest, struct http_response *r)
 {
 	char *id = rest, *sub = strchr(rest, '/');
 	if (sub)
 		*sub++ = 0;
 	if (strlen(id) >= 16) {
-		text(r, 404, "no such job\n");
+		http_text(r, 404, "no such job\n");
 		return;
 	}
 	pthread_mutex_lock(&d->store->lock);
@@ -197,11 +145,11 @@ static void job_route(struct daemon *d, char *rest, struct response *r)
 	json_t *o = job && !sub ? job_to_json(job) : NULL;
 	pthread_mutex_unlock(&d->store->lock);
 	if (!job) {
-		text(r, 404, "no such job\n");
+		http_text(r, 404, "no such job\n");
 		return;
 	}
 	if (!sub) {
-		json_body(r, o);
+		http_json(r, o);
 		return;
 	}
 	/* frames|diff|flip/{method}/{n}.png: the method as its label ("ssaa:16") or directory name ("ssaa_16") */
@@ -210,7 +158,7 @@ static void job_route(struct daemon *d, char *rest, struct response *r)
 	if (!strncmp(sub, "frames/", 7) || !strncmp(sub, "diff/", 5) || !strncmp(sub, "flip/", 5)) {
 		char *name = strchr(sub, '/') + 1, *slash = strchr(name, '/');
 		if (!slash || percent_decode(name)) {
-			text(r, 404, "not found\n");
+			http_text(r, 404, "not found\n");
 			return;
 		}
 		slash = strchr(name, '/');
@@ -220,34 +168,35 @@ static void job_route(struct daemon *d, char *rest, struct response *r)
 		long n = strtol(slash + 1, NULL, 10);
 		if (strspn(slash + 1, "0123456789") == 0 || strcmp(slash + 1 + strspn(slash + 1, "0123456789"), ".png") ||
 		    n > 99999999) {
-			text(r, 404, "not found\n");
+			http_text(r, 404, "not found\n");
 			return;
 		}
 		*strchr(sub, '/') = 0; /* sub is now "frames", "diff" or "flip" */
 		snprintf(rel, sizeof rel, "%s/%s/%04ld.png", sub, dir, n);
 	}
 	if (job_file_path(d->store->dir, id, rel, path, sizeof path)) {
-		text(r, 404, "not found\n");
+		http_text(r, 404, "not found\n");
 		return;
 	}
-	file_body(r, path, file_content_type(rel));
+	http_file(r, path, file_content_type(rel));
 }
 
-static void route(struct daemon *d, char *target, struct response *r)
+void http_route(struct conn *c, char *target, struct http_response *r)
 {
+	struct daemon *d = conn_daemon(c);
 	char *q = strchr(target, '?');
 	if (q)
 		*q++ = 0; /* the dashboard adds ?t= to defeat caches; the farm routes read the rest */
 	struct farm_reply farm;
 	if (farm_http(d, target, q, &farm)) {
 		if (farm.json)
-			json_body(r, farm.json);
+			http_json(r, farm.json);
 		else
-			text(r, farm.status, farm.text);
+			http_text(r, farm.status, farm.text);
 		return;
 	}
 	if (!strcmp(target, "/healthz")) {
-		text(r, d->draining ? 503 : 200, d->draining ? "draining\n" : "ok\n");
+		http_text(r, d->draining ? 503 : 200, d->draining ? "draining\n" : "ok\n");
 	} else if (!strcmp(target, "/metrics")) {
 		metrics(d, r);
 	} else if (!strncmp(target, "/v1/jobs/", 9)) {
@@ -256,80 +205,13 @@ static void route(struct daemon *d, char *target, struct response *r)
 		const char *name = target[1] ? target + 5 : "index.html";
 		char path[1400];
 		if (!*name || name[0] == '.' || strchr(name, '/') || strlen(name) > 64 || !d->cfg.web_dir[0]) {
-			text(r, 404, "not found\n");
+			http_text(r, 404, "not found\n");
 			return;
 		}
 		snprintf(path, sizeof path, "%s/%.64s", d->cfg.web_dir, name);
-		file_body(r, path, file_content_type(name));
+		http_file(r, path, file_content_type(name));
 	} else {
-		text(r, 404, "not found\n");
+		http_text(r, 404, "not found\n");
 	}
 }
 
-static void respond(struct conn *c, struct response *r, bool head, bool keep_alive)
-{
-	char hdr[1024];
-	int n = snprintf(hdr, sizeof hdr, "HTTP/1.1 %d %s\r\nServer: aalabd/" PACKAGE_VERSION "\r\n"
-			 "Content-Type: %s\r\nContent-Length: %zu\r\nCache-Control: no-store\r\n%sConnection: %s\r\n\r\n",
-			 r->status, reason(r->status), r->type ? r->type : "text/plain", r->size,
-			 r->extra ? r->extra : "", keep_alive ? "keep-alive" : "close");
-	conn_send(c, hdr, (size_t)n);
-	if (!head && r->body)
-		conn_send(c, r->body, r->size);
-	free(r->body);
-	if (!keep_alive)
-		conn_close_after_flush(c);
-}
-
-static void refuse_request(struct conn *c, int status, const char *why)
-{
-	struct response r = {0};
-	char msg[300];
-	snprintf(msg, sizeof msg, "%s\n", why);
-	text(&r, status, msg);
-	respond(c, &r, false, false);
-}
-
-/* Handles every complete request in the input buffer; a malformed one is answered and ends the
- * connection as soon as its bad line is in (http_parse.c). */
-void http_input(struct conn *c)
-{
-	struct daemon *d = c->d;
-	int handled = 0;
-	c->backlog = false;
-	while (!c->closed && !c->close_after_flush && c->in_len > 0) {
-		if (conn_turn_over(c, handled++, c->turn_ms)) { /* the rest in a later turn (conns_pump_input) */
-			c->backlog = true;
-			return;
-		}
-		struct http_request req;
-		const char *why;
-		long taken = http_parse_request(c->in, c->in_len, &req, &why);
-		if (taken == 0)
-			return;
-		d->stats.http_requests_total++;
-		if (taken < 0) {
-			c->in_len = 0;
-			refuse_request(c, (int)-taken, why);
-			return;
-		}
-		memmove(c->in, c->in + taken, c->in_len - (size_t)taken);
-		c->in_len -= (size_t)taken;
-		bool head = !strcmp(req.method, "HEAD");
-		bool authorized = !d->token[0] || !c->via_tcp || (req.bearer[0] && token_equal(req.bearer, d->token));
-		struct response r = {0};
-		if (req.has_body) {
-			refuse_request(c, 400, "bad request: GET or HEAD with no body");
-			return;
-		} else if (strcmp(req.method, "GET") && !head) {
-			text(&r, 405, "only GET and HEAD\n");
-			r.extra = "Allow: GET, HEAD\r\n";
-		} else if (!authorized && strcmp(req.target, "/healthz")) {
-			text(&r, 401, "send Authorization: Bearer TOKEN\n");
-			r.extra = "WWW-Authenticate: Bearer\r\n";
-		} else {
-			route(d, req.target, &r);
-		}
-		respond(c, &r, head, req.keep_alive);
-	}
-}
