@@ -182,6 +182,18 @@ void conn_close_after_flush(struct conn *c)
 		conn_close(c);
 }
 
+/* A connection's further requests wait unread while more than this of its replies is unsent, so a client
+ * that does not read is paused after a few replies and costs the others nothing more; client-buffer-bytes,
+ * larger, bounds what a watch stream keeps queued. */
+#define REPLY_BACKLOG_BYTES ((size_t)64 << 10)
+
+static bool takes_requests(const struct conn *c)
+{
+	size_t limit = c->t->cfg->client_buffer_bytes < REPLY_BACKLOG_BYTES ? c->t->cfg->client_buffer_bytes
+									    : REPLY_BACKLOG_BYTES;
+	return conn_pending(c) <= limit;
+}
+
 /* Reads only while the client can take replies; never after its end of input (poll would report it
  * again and again). A connection that is to close and has nothing left to send closes here: watching
  * nothing, it would hold its slot until the idle timeout. */
@@ -194,7 +206,7 @@ static void update_interest(struct conn *c)
 		return;
 	}
 	int mask = conn_pending(c) ? LOOP_WRITE : 0;
-	if (!c->eof && !c->close_after_flush && !c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
+	if (!c->eof && !c->close_after_flush && !c->backlog && takes_requests(c))
 		mask |= LOOP_READ;
 	loop_watch(c->t->loop, c->fd, mask, conn_io, c);
 }
@@ -226,7 +238,7 @@ static void flush(struct conn *c)
 		conn_close(c);
 		return;
 	}
-	if (c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
+	if (c->backlog && takes_requests(c))
 		loop_wake(c->t->loop); /* a paused client read its replies: its requests go on */
 	update_interest(c);
 }
@@ -235,7 +247,7 @@ void conn_send(struct conn *c, const void *data, size_t size)
 {
 	if (c->closed)
 		return;
-	/* Watch streams stop at client_buffer_bytes (stream.c) and reading stops there too (update_interest),
+	/* Watch streams stop at client_buffer_bytes (stream.c) and requests pause well below it (takes_requests),
 	 * so only a client that keeps asking without reading anything gets this far. */
 	if (conn_pending(c) > 0 && conn_pending(c) + size > 4 * c->t->cfg->client_buffer_bytes + (1u << 20)) {
 		fprintf(stderr, "aalabd: dropping %s: it does not read its replies\n", c->peer);
@@ -280,7 +292,7 @@ void conn_send_json(struct conn *c, json_t *msg)
 
 bool conn_turn_over(const struct conn *c, int handled, double started_ms)
 {
-	return conn_pending(c) > c->t->cfg->client_buffer_bytes ||
+	return !takes_requests(c) ||
 	       (handled > 0 && (handled >= REQUESTS_PER_TURN || loop_now_ms() - started_ms > TURN_MS));
 }
 
@@ -289,13 +301,13 @@ static void handle_input(struct conn *c)
 	c->turn_ms = loop_now_ms();
 	c->input(c);
 	/* more to do, and room for its replies: a later turn of the loop goes on (conns_pump_input) */
-	if (!c->closed && c->backlog && conn_pending(c) <= c->t->cfg->client_buffer_bytes)
+	if (!c->closed && c->backlog && takes_requests(c))
 		loop_wake(c->t->loop);
 }
 
 static bool waits_for_turn(const struct conn *c)
 {
-	return !c->closed && c->backlog && !c->close_after_flush && conn_pending(c) <= c->t->cfg->client_buffer_bytes;
+	return !c->closed && c->backlog && !c->close_after_flush && takes_requests(c);
 }
 
 void conns_pump_input(struct transport *t)
@@ -370,7 +382,7 @@ static void conn_read(struct conn *c)
 			return;
 		/* a client that pipelines requests without reading replies is paused, not buffered without end;
 		 * one with requests left for a later turn reads no more until they are handled */
-		if (c->backlog || conn_pending(c) > t->cfg->client_buffer_bytes)
+		if (c->backlog || !takes_requests(c))
 			break;
 	}
 	if ((c->in_len > 0 || c->pending) && c->partial_since_ms == 0)

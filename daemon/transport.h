@@ -84,12 +84,12 @@ void conn_send(struct conn *c, const void *data, size_t size);
  * pipelines costly requests cannot hold the loop for all of them at once. */
 #define REQUESTS_PER_TURN 16
 #define TURN_MS 2.0
-/* Whether c has had its turn after handled requests begun at started_ms, or its replies wait over
- * client-buffer-bytes (a client that does not read is paused: its further requests wait in its input,
+/* Whether c has had its turn after handled requests begun at started_ms, or over 64 KiB of its replies
+ * wait unsent (a client that does not read is paused: its further requests wait in its input,
  * and past slow-client-timeout it is dropped). The input functions then set c->backlog. */
 bool conn_turn_over(const struct conn *c, int handled, double started_ms);
 /* Goes on with the requests that connections left for a later turn (each takes at most
- * REQUESTS_PER_TURN a turn, and none while its replies wait over client-buffer-bytes). */
+ * REQUESTS_PER_TURN a turn, and none while it is paused). */
 void conns_pump_input(struct transport *t);
 void conn_send_json(struct conn *c, json_t *msg); /* steals msg */
 /* The protocol's error reply {ok:false, error:{code, message, path}, tag}. */

@@ -131,6 +131,8 @@ try:
             w = d.connect()
             w.send({"op": "watch", "job": rng.choice(active), "frames": "none"})
             watchers.append(w)
+            if len(watchers) > 16:  # a long churn stays under max-connections-per-peer (64)
+                watchers.pop(0).close()
         elif op == "drop_watch" and watchers:
             watchers.pop(rng.randrange(len(watchers))).close()
         elif op == "reload":
