@@ -147,7 +147,7 @@ struct flip_band {
 	int x_begin, x_end;        /* the strip of columns being computed */
 	int ring_size;             /* 2M + 1 */
 	size_t row_len;            /* floats per ring row: the widest strip in whole blocks */
-	float *ring;               /* ring_size x 2 images x H_ROWS rows */
+	float *ring;               /* ring_size x the run's images (1 or 2) x H_ROWS rows */
 	int *ring_row;             /* the source row each slot holds, -1 when none */
 	float *planes[P_PLANES];   /* M + row_len + M floats each, and a vector of slack */
 	float *rgb[3];             /* linear R, G and B of one source row: M + row_len + M floats each */
@@ -180,7 +180,9 @@ static void load_linear_row(const struct flip_run *run, const struct flip_source
 
 static float *ring_rows(struct flip_band *band, int slot, int image)
 {
-	return band->ring + ((size_t)slot * 2 + image) * H_ROWS * band->row_len;
+	const struct flip_run *run = band->run;
+	const int images = run->image_end - run->image_begin;
+	return band->ring + ((size_t)slot * images + (size_t)(image - run->image_begin)) * H_ROWS * band->row_len;
 }
 
 /* Converts source row y of both images to YCxCz and filters it horizontally into its ring slot, for the
@@ -391,7 +393,8 @@ static int band_init(struct flip_band *band, const struct flip_run *run, int y_b
 	band->y_end = y_end;
 	band->ring_size = 2 * run->margin + 1;
 	band->row_len = (size_t)strip_width(run);
-	band->ring = malloc((size_t)band->ring_size * 2 * H_ROWS * band->row_len * sizeof(float));
+	const size_t images = (size_t)(run->image_end - run->image_begin);
+	band->ring = malloc((size_t)band->ring_size * images * H_ROWS * band->row_len * sizeof(float));
 	band->ring_row = malloc((size_t)band->ring_size * sizeof(int));
 	bool ok = band->ring && band->ring_row;
 	for (int c = 0; c < 3; c++) {
@@ -527,13 +530,18 @@ void aa_flip_reference_free(struct aa_flip_reference *ref)
 	free(ref);
 }
 
-/* Runs the ring over the reference alone (src[0]) and keeps its side of every pixel. */
+/* Runs the ring over the reference alone (src[0]) and keeps its side of every pixel. A reference made
+ * before at the same size keeps its planes: fresh pages of a few MB cost about as much as the filtering. */
 static int reference_build(const struct aa_flip_options *opt, int w, int h, const void *pixels, bool rgba8,
 			   struct aa_flip_reference **out, struct aa_error *err)
 {
+	struct aa_flip_reference *ref = *out;
 	*out = NULL;
-	struct aa_flip_reference *ref = calloc(1, sizeof *ref);
-	if (!ref)
+	if (ref && (ref->width != w || ref->height != h)) {
+		aa_flip_reference_free(ref);
+		ref = NULL;
+	}
+	if (!ref && !(ref = calloc(1, sizeof *ref)))
 		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a FLIP reference");
 	struct flip_run run;
 	float unused_map;
@@ -547,7 +555,8 @@ static int reference_build(const struct aa_flip_options *opt, int w, int h, cons
 	bool ok = true;
 	for (int q = 0; q < R_PLANES; q++) {
 		/* calloc: the slack past the last pixel, which the colour kernel reads, is defined */
-		ref->plane[q] = calloc(n + BLOCK, sizeof(float));
+		if (!ref->plane[q])
+			ref->plane[q] = calloc(n + BLOCK, sizeof(float));
 		ok = ok && ref->plane[q];
 	}
 	if (!ok) {

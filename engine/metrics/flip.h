@@ -62,7 +62,9 @@ int aa_flip_ldr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_r
 /* The reference side of LDR-FLIP (its colour transform, filtering and feature detection), computed once
  * and shared by every image compared against it, read-only (several threads may use one at once). */
 struct aa_flip_reference;
-/* From an 8-bit sRGB or a linear float image (alpha ignored) at opt's ppd (opt->threads is used to make it). */
+/* From an 8-bit sRGB or a linear float image (alpha ignored) at opt's ppd (opt->threads is used to make it).
+ * *out is NULL or a reference made before, which is remade in its own memory when the size is the same
+ * (a scorer keeps one for all its frames). On failure *out is NULL and the old one freed. */
 int aa_flip_reference_rgba8(const struct aa_image_rgba8 *ref, const struct aa_flip_options *opt,
 			    struct aa_flip_reference **out, struct aa_error *err);
 int aa_flip_reference_linear(const struct aa_image_rgbaf *ref, const struct aa_flip_options *opt,

@@ -35,7 +35,8 @@ struct aa_scoring {
 	struct aa_error err;
 	/* a frame's methods, shared out between the thread and its helper */
 	struct aa_scoring_frame *scoring;
-	struct aa_flip_reference *flip_ref; /* the frame's FLIP reference side, made once, read by both */
+	struct aa_flip_reference *flip_ref; /* the frame's FLIP reference side, made once, read by both; its
+					     * memory is kept from frame to frame */
 	int next_method;
 	struct aa_error method_err[AA_MAX_METHODS];
 };
@@ -152,8 +153,6 @@ static int score_frame(struct aa_scoring *sc, struct aa_scoring_frame *f, struct
 	score_methods(sc);
 	if (helped)
 		pthread_join(helper, NULL);
-	aa_flip_reference_free(sc->flip_ref);
-	sc->flip_ref = NULL;
 	for (int k = 0; k < count; k++) {
 		const int i = f->order[k];
 		if (sc->method_err[i].message[0]) {
@@ -282,6 +281,7 @@ void aa_scoring_destroy(struct aa_scoring *sc)
 		aa_image_rgba8_free(&sc->m[i].prev8);
 	}
 	aa_image_rgba8_free(&sc->prev_ref8);
+	aa_flip_reference_free(sc->flip_ref);
 	free(sc);
 }
 

@@ -103,6 +103,30 @@ static void test_shared_equals_one_shot(void **state)
 	check_shared(70, 33, 150.0f, 2);
 }
 
+/* One reference remade for image after image, at the same size (its memory kept) and at another. */
+static void test_remade(void **state)
+{
+	(void)state;
+	struct aa_flip_reference *shared = NULL;
+	const int sizes[][2] = { { 90, 40 }, { 90, 40 }, { 33, 70 }, { 90, 40 } };
+	for (int k = 0; k < 4; k++) {
+		const int w = sizes[k][0], h = sizes[k][1];
+		struct aa_image_rgba8 ref, test;
+		make_image(&ref, w, h, 11 + (uint32_t)k, 20 * (k % 2));
+		make_image(&test, w, h, 5, 9);
+		float *a = malloc((size_t)w * h * sizeof *a), *b = malloc((size_t)w * h * sizeof *b);
+		assert_int_equal(aa_flip_reference_rgba8(&ref, NULL, &shared, NULL), 0);
+		assert_int_equal(aa_flip_ldr_rgba8(&ref, &test, NULL, a, NULL), 0);
+		assert_int_equal(aa_flip_ldr_rgba8_against(shared, &test, NULL, b, NULL), 0);
+		assert_memory_equal(a, b, (size_t)w * h * sizeof *a);
+		free(a);
+		free(b);
+		aa_image_rgba8_free(&ref);
+		aa_image_rgba8_free(&test);
+	}
+	aa_flip_reference_free(shared);
+}
+
 static void test_shared_errors(void **state)
 {
 	(void)state;
@@ -117,7 +141,7 @@ static void test_shared_errors(void **state)
 	const struct aa_flip_options other_ppd = { .ppd = 30.0f };
 	assert_int_equal(aa_flip_ldr_rgba8_against(shared, &ref, &other_ppd, map, &err), -1);
 	assert_int_equal(aa_flip_ldr_rgba8_against(NULL, &ref, NULL, map, &err), -1);
-	struct aa_flip_reference *none = (struct aa_flip_reference *)1;
+	struct aa_flip_reference *none = NULL;
 	const struct aa_flip_options bad_ppd = { .ppd = -1.0f };
 	assert_int_equal(aa_flip_reference_rgba8(&ref, &bad_ppd, &none, &err), -1);
 	assert_null(none);
@@ -244,6 +268,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_shared_equals_one_shot),
+		cmocka_unit_test(test_remade),
 		cmocka_unit_test(test_shared_errors),
 		cmocka_unit_test(test_scorer_equals_methods_alone),
 	};
