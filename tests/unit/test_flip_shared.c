@@ -172,11 +172,12 @@ static int on_event(const struct aa_event *ev, void *user)
 	return 0;
 }
 
-/* Method i's output at frame k: the reference's shapes with its own noise (method 0 is exact). */
+/* Method i's output at frame k: shapes with noise of its own (method 0 is the reference, so exact); the
+ * reference differs from frame to frame. */
 static void method_output(int k, int i, struct aa_image_rgbaf *out)
 {
 	struct aa_image_rgba8 img;
-	make_image(&img, W, H, 1 + (uint32_t)k, i == 0 ? 0 : 4 * i);
+	make_image(&img, W, H, 1 + (uint32_t)k + 100 * (uint32_t)i, 2 * k + 4 * i);
 	for (size_t p = 0; p < (size_t)W * H * 4; p++)
 		out->pixels[p] = (float)img.pixels[p] / 255.0f;
 	aa_image_rgba8_free(&img);
