@@ -7,7 +7,11 @@
  * one strip of columns at a time so that the ring stays in L2; then it filters each output row
  * vertically in blocks of BLOCK pixels, which stay in L1, and computes the errors of the block. The SIMD
  * kernels (flip_simd.c) do per pixel what scalar code does, in the reference's order, so the map is the
- * same bit for bit with any number of threads and with or without AVX2. */
+ * same bit for bit with any number of threads and with or without AVX2.
+ *
+ * What depends on the reference alone (its filtered YCxCz and its edge and point strengths) can be made
+ * once and kept per pixel (struct aa_flip_reference); a test image compared against it then goes through
+ * the ring alone. Each value is computed by the same code either way, so the maps are the same. */
 #include "metrics/flip.h"
 #include "metrics/flip_internal.h"
 
@@ -237,10 +241,6 @@ static inline int clamp_row(int y, int h)
 
 enum { V_Y, V_CX, V_CZ1, V_CZ2, V_DX, V_DDX, V_DY, V_DDY, V_ROWS };
 
-/* The errors of n pixels from their vertically filtered values: the colour pipeline's linear steps in
- * SIMD (flip_simd.c), the cube roots and powers here. Where the filtered colours agree exactly the colour
- * error is exactly 0 and its seven powf calls are skipped, likewise the feature power where the features
- * agree: the same results, much less time on the flat areas that fill most comparisons. */
 /* Edge and point strength of n pixels of one image: its gradient and second-derivative magnitudes. */
 static void features_block(float v[V_ROWS][BLOCK], int n, float edge[BLOCK], float point[BLOCK])
 {
@@ -250,7 +250,11 @@ static void features_block(float v[V_ROWS][BLOCK], int n, float edge[BLOCK], flo
 	}
 }
 
-/* r: the reference side (R_* rows of BLOCK readable floats), v: the test's filtered values. */
+/* The errors of n pixels from their vertically filtered values: the colour pipeline's linear steps in
+ * SIMD (flip_simd.c), the cube roots and powers here. Where the filtered colours agree exactly the colour
+ * error is exactly 0 and its seven powf calls are skipped, likewise the feature power where the features
+ * agree: the same results, much less time on the flat areas that fill most comparisons. r is the reference
+ * side (R_* rows of BLOCK readable floats), v the test's filtered values. */
 static void errors_block(const struct flip_run *run, const float *const r[R_PLANES], float v[V_ROWS][BLOCK],
 			 int n, float *dst)
 {
@@ -601,7 +605,8 @@ static int against(const struct aa_flip_reference *ref, int w, int h, const void
 	if (!ref)
 		return aa_error_set(err, AA_ERR_INVALID, "", "no FLIP reference");
 	if (opt && opt->ppd != 0.0f && opt->ppd != ref->filters.ppd)
-		return aa_error_set(err, AA_ERR_INVALID, "ppd", "the FLIP reference was made at %g pixels per degree, not %g",
+		return aa_error_set(err, AA_ERR_INVALID, "ppd",
+				    "the FLIP reference was made at %g pixels per degree, not %g",
 				    (double)ref->filters.ppd, (double)opt->ppd);
 	struct flip_run run;
 	struct aa_flip_filters unused;
