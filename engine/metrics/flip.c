@@ -7,7 +7,11 @@
  * one strip of columns at a time so that the ring stays in L2; then it filters each output row
  * vertically in blocks of BLOCK pixels, which stay in L1, and computes the errors of the block. The SIMD
  * kernels (flip_simd.c) do per pixel what scalar code does, in the reference's order, so the map is the
- * same bit for bit with any number of threads and with or without AVX2. */
+ * same bit for bit with any number of threads and with or without AVX2.
+ *
+ * What depends on the reference alone (its filtered YCxCz and its edge and point strengths) can be made
+ * once and kept per pixel (struct aa_flip_reference); a test image compared against it then goes through
+ * the ring alone. Each value is computed by the same code either way, so the maps are the same. */
 #include "metrics/flip.h"
 #include "metrics/flip_internal.h"
 
@@ -118,6 +122,22 @@ struct flip_run {
 	float srgb_table[256];
 	float *map;
 	bool merge_max;            /* HDR: keep the larger of map and this exposure's error */
+	/* The images whose rows go through the ring: [0, 2) both; [1, 2) the test alone against ref_in,
+	 * whose reference side was computed once; [0, 1) the reference alone, into ref_out. */
+	int image_begin, image_end;
+	const struct aa_flip_reference *ref_in;
+	struct aa_flip_reference *ref_out;
+};
+
+/* The reference side of the map, per pixel: its vertically filtered Y, Cx and both Cz rows, and its edge
+ * and point strengths. These depend on the reference alone, so every test image of one frame can share
+ * them (aa_flip_ldr_rgba8_against). */
+enum { R_Y, R_CX, R_CZ1, R_CZ2, R_EDGE, R_POINT, R_PLANES };
+
+struct aa_flip_reference {
+	int width, height;
+	struct aa_flip_filters filters;
+	float *plane[R_PLANES]; /* width x height, row-major, then BLOCK floats of slack the kernels read */
 };
 
 /* Horizontally filtered rows per image, in each ring slot. */
@@ -131,7 +151,7 @@ struct flip_band {
 	int x_begin, x_end;        /* the strip of columns being computed */
 	int ring_size;             /* 2M + 1 */
 	size_t row_len;            /* floats per ring row: the widest strip in whole blocks */
-	float *ring;               /* ring_size x 2 images x H_ROWS rows */
+	float *ring;               /* ring_size x the run's images (1 or 2) x H_ROWS rows */
 	int *ring_row;             /* the source row each slot holds, -1 when none */
 	float *planes[P_PLANES];   /* M + row_len + M floats each, and a vector of slack */
 	float *rgb[3];             /* linear R, G and B of one source row: M + row_len + M floats each */
@@ -164,7 +184,9 @@ static void load_linear_row(const struct flip_run *run, const struct flip_source
 
 static float *ring_rows(struct flip_band *band, int slot, int image)
 {
-	return band->ring + ((size_t)slot * 2 + image) * H_ROWS * band->row_len;
+	const struct flip_run *run = band->run;
+	const int images = run->image_end - run->image_begin;
+	return band->ring + ((size_t)slot * images + (size_t)(image - run->image_begin)) * H_ROWS * band->row_len;
 }
 
 /* Converts source row y of both images to YCxCz and filters it horizontally into its ring slot, for the
@@ -180,7 +202,7 @@ static void fill_ring_row(struct flip_band *band, int y)
 	const size_t stride = band->row_len;
 	const int first = band->x_begin - m, span = (int)len + 2 * m;
 	const int lo = first < 0 ? 0 : first, hi = first + span < w ? first + span : w;
-	for (int image = 0; image < 2; image++) {
+	for (int image = run->image_begin; image < run->image_end; image++) {
 		load_linear_row(run, &run->src[image], y, lo, hi, band->rgb);
 		float *py = band->planes[P_Y], *pcx = band->planes[P_CX];
 		float *pcz = band->planes[P_CZ], *pyn = band->planes[P_YN];
@@ -219,19 +241,32 @@ static inline int clamp_row(int y, int h)
 
 enum { V_Y, V_CX, V_CZ1, V_CZ2, V_DX, V_DDX, V_DY, V_DDY, V_ROWS };
 
+/* Edge and point strength of n pixels of one image: its gradient and second-derivative magnitudes. */
+static void features_block(float v[V_ROWS][BLOCK], int n, float edge[BLOCK], float point[BLOCK])
+{
+	for (int e = 0; e < n; e++) {
+		edge[e] = sqrtf(v[V_DX][e] * v[V_DX][e] + v[V_DY][e] * v[V_DY][e]);
+		point[e] = sqrtf(v[V_DDX][e] * v[V_DDX][e] + v[V_DDY][e] * v[V_DDY][e]);
+	}
+}
+
 /* The errors of n pixels from their vertically filtered values: the colour pipeline's linear steps in
  * SIMD (flip_simd.c), the cube roots and powers here. Where the filtered colours agree exactly the colour
  * error is exactly 0 and its seven powf calls are skipped, likewise the feature power where the features
- * agree: the same results, much less time on the flat areas that fill most comparisons. */
-static void errors_block(const struct flip_run *run, float v[2][V_ROWS][BLOCK], int n, float *dst)
+ * agree: the same results, much less time on the flat areas that fill most comparisons. r is the reference
+ * side (R_* rows of BLOCK readable floats), v the test's filtered values. */
+static void errors_block(const struct flip_run *run, const float *const r[R_PLANES], float v[V_ROWS][BLOCK],
+			 int n, float *dst)
 {
 	const float delta = 6.0f / 29.0f, delta_sq = delta * delta, delta_cube = delta * delta_sq;
 	const float factor = 1.0f / (3.0f * delta_sq), term = 4.0f / 29.0f;
 	const float cmax = run->cmax, pccmax = run->pccmax;
 	float t[2][3][BLOCK], dl[BLOCK], dab2[BLOCK];
 	int32_t same[BLOCK];
-	const float *const yc[2][4] = { { v[0][V_Y], v[0][V_CX], v[0][V_CZ1], v[0][V_CZ2] },
-					{ v[1][V_Y], v[1][V_CX], v[1][V_CZ1], v[1][V_CZ2] } };
+	const float *const yc[2][4] = { { r[R_Y], r[R_CX], r[R_CZ1], r[R_CZ2] },
+					{ v[V_Y], v[V_CX], v[V_CZ1], v[V_CZ2] } };
+	float edge_t[BLOCK], point_t[BLOCK];
+	features_block(v, n, edge_t, point_t);
 	flip_colour_block(yc, t, same);
 	for (int e = 0; e < n; e++)
 		if (!same[e])
@@ -247,12 +282,9 @@ static void errors_block(const struct flip_run *run, float v[2][V_ROWS][BLOCK], 
 			float d = powf(dl[e] + sqrtf(dab2[e]), FLIP_QC);
 			cdiff = d < pccmax ? d * (FLIP_PT / pccmax) : FLIP_PT + ((d - pccmax) / (cmax - pccmax)) * (1.0f - FLIP_PT);
 		}
-		float edge_r = sqrtf(v[0][V_DX][e] * v[0][V_DX][e] + v[0][V_DY][e] * v[0][V_DY][e]);
-		float edge_t = sqrtf(v[1][V_DX][e] * v[1][V_DX][e] + v[1][V_DY][e] * v[1][V_DY][e]);
-		float point_r = sqrtf(v[0][V_DDX][e] * v[0][V_DDX][e] + v[0][V_DDY][e] * v[0][V_DDY][e]);
-		float point_t = sqrtf(v[1][V_DDX][e] * v[1][V_DDX][e] + v[1][V_DDY][e] * v[1][V_DDY][e]);
-		bool no_feature = edge_r == edge_t && point_r == point_t;
-		float fdiff = no_feature ? 0.0f : aa_flip_feature_error(edge_r, edge_t, point_r, point_t);
+		const float edge_r = r[R_EDGE][e], point_r = r[R_POINT][e];
+		bool no_feature = edge_r == edge_t[e] && point_r == point_t[e];
+		float fdiff = no_feature ? 0.0f : aa_flip_feature_error(edge_r, edge_t[e], point_r, point_t[e]);
 		float err = cdiff == 0.0f ? pow_zero(1.0f - fdiff) : powf(cdiff, 1.0f - fdiff);
 		if (!run->merge_max || err > dst[e])
 			dst[e] = err;
@@ -275,7 +307,7 @@ static void compute_row(struct flip_band *band, int y)
 	}
 	/* rows[image][s][k]: horizontally filtered row s of source row y + k - radius. */
 	const float *rows[2][H_ROWS][AA_FLIP_MAX_TAPS];
-	for (int image = 0; image < 2; image++)
+	for (int image = run->image_begin; image < run->image_end; image++)
 		for (int s = 0; s < H_ROWS; s++) {
 			int radius = s < H_DG ? rc : rf;
 			for (int k = 0; k <= 2 * radius; k++) {
@@ -283,11 +315,11 @@ static void compute_row(struct flip_band *band, int y)
 				rows[image][s][k] = ring_rows(band, yy % band->ring_size, image) + s * len;
 			}
 		}
-	float v[2][V_ROWS][BLOCK];
-	float *map_row = run->map + (size_t)y * run->width + band->x_begin;
+	float v[2][V_ROWS][BLOCK], ref_edge[BLOCK], ref_point[BLOCK];
+	const size_t pixel0 = (size_t)y * run->width + band->x_begin;
 	const int tc = 2 * rc + 1, tf = 2 * rf + 1, strip = band->x_end - band->x_begin;
 	for (size_t e0 = 0; e0 < (size_t)strip; e0 += BLOCK) {
-		for (int i = 0; i < 2; i++) {
+		for (int i = run->image_begin; i < run->image_end; i++) {
 			flip_filter_column(rows[i][H_Y], e0, f->csf_y, tc, v[i][V_Y]);
 			flip_filter_column(rows[i][H_CX], e0, f->csf_cx, tc, v[i][V_CX]);
 			flip_filter_column(rows[i][H_CZ1], e0, f->csf_cz1, tc, v[i][V_CZ1]);
@@ -297,7 +329,23 @@ static void compute_row(struct flip_band *band, int y)
 			flip_filter_column2(rows[i][H_G], e0, f->dg, f->ddg, tf, v[i][V_DY], v[i][V_DDY]);
 		}
 		int n = strip - (int)e0 < BLOCK ? strip - (int)e0 : BLOCK;
-		errors_block(run, v, n, map_row + e0);
+		if (run->ref_in) {
+			const float *r[R_PLANES];
+			for (int q = 0; q < R_PLANES; q++)
+				r[q] = run->ref_in->plane[q] + pixel0 + e0;
+			errors_block(run, r, v[1], n, run->map + pixel0 + e0);
+			continue;
+		}
+		features_block(v[0], n, ref_edge, ref_point);
+		if (run->ref_out) {
+			/* n values only: the rest of the block belongs to the next strip or row, maybe another band's. */
+			const float *from[R_PLANES] = { v[0][V_Y], v[0][V_CX], v[0][V_CZ1], v[0][V_CZ2], ref_edge, ref_point };
+			for (int q = 0; q < R_PLANES; q++)
+				memcpy(run->ref_out->plane[q] + pixel0 + e0, from[q], (size_t)n * sizeof(float));
+			continue;
+		}
+		const float *const r[R_PLANES] = { v[0][V_Y], v[0][V_CX], v[0][V_CZ1], v[0][V_CZ2], ref_edge, ref_point };
+		errors_block(run, r, v[1], n, run->map + pixel0 + e0);
 	}
 }
 
@@ -349,7 +397,8 @@ static int band_init(struct flip_band *band, const struct flip_run *run, int y_b
 	band->y_end = y_end;
 	band->ring_size = 2 * run->margin + 1;
 	band->row_len = (size_t)strip_width(run);
-	band->ring = malloc((size_t)band->ring_size * 2 * H_ROWS * band->row_len * sizeof(float));
+	const size_t images = (size_t)(run->image_end - run->image_begin);
+	band->ring = malloc((size_t)band->ring_size * images * H_ROWS * band->row_len * sizeof(float));
 	band->ring_row = malloc((size_t)band->ring_size * sizeof(int));
 	bool ok = band->ring && band->ring_row;
 	for (int c = 0; c < 3; c++) {
@@ -440,6 +489,8 @@ static int run_setup(struct flip_run *run, struct aa_flip_filters *f, const stru
 	run->cmax = aa_flip_max_color_distance();
 	run->pccmax = FLIP_PC * run->cmax;
 	run->map = map;
+	run->image_begin = 0;
+	run->image_end = 2;
 	return 0;
 }
 
@@ -470,6 +521,121 @@ int aa_flip_ldr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_r
 	run.src[0].rgbaf = ref->pixels;
 	run.src[1].rgbaf = test->pixels;
 	return run_bands(&run, err);
+}
+
+/* ------------------------------------------------------------------------------- the shared reference */
+
+void aa_flip_reference_free(struct aa_flip_reference *ref)
+{
+	if (!ref)
+		return;
+	for (int q = 0; q < R_PLANES; q++)
+		free(ref->plane[q]);
+	free(ref);
+}
+
+/* Runs the ring over the reference alone (src[0]) and keeps its side of every pixel. A reference made
+ * before at the same size keeps its planes: fresh pages of a few MB cost about as much as the filtering. */
+static int reference_build(const struct aa_flip_options *opt, int w, int h, const void *pixels, bool rgba8,
+			   struct aa_flip_reference **out, struct aa_error *err)
+{
+	struct aa_flip_reference *ref = *out;
+	*out = NULL;
+	if (ref && (ref->width != w || ref->height != h)) {
+		aa_flip_reference_free(ref);
+		ref = NULL;
+	}
+	if (!ref && !(ref = calloc(1, sizeof *ref)))
+		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a FLIP reference");
+	struct flip_run run;
+	float unused_map;
+	if (run_setup(&run, &ref->filters, opt, w, h, w, h, pixels, pixels, &unused_map, err) != 0) {
+		aa_flip_reference_free(ref);
+		return -1;
+	}
+	ref->width = w;
+	ref->height = h;
+	const size_t n = (size_t)w * h;
+	bool ok = true;
+	for (int q = 0; q < R_PLANES; q++) {
+		/* calloc: the slack past the last pixel, which the colour kernel reads, is defined */
+		if (!ref->plane[q])
+			ref->plane[q] = calloc(n + BLOCK, sizeof(float));
+		ok = ok && ref->plane[q];
+	}
+	if (!ok) {
+		aa_flip_reference_free(ref);
+		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for the FLIP reference of a %dx%d image", w, h);
+	}
+	if (rgba8) {
+		for (int v = 0; v < 256; v++)
+			run.srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
+		run.src[0].rgba8 = pixels;
+	} else {
+		run.src[0].rgbaf = pixels;
+	}
+	run.map = NULL;
+	run.image_begin = 0;
+	run.image_end = 1;
+	run.ref_out = ref;
+	if (run_bands(&run, err) != 0) {
+		aa_flip_reference_free(ref);
+		return -1;
+	}
+	*out = ref;
+	return 0;
+}
+
+int aa_flip_reference_rgba8(const struct aa_image_rgba8 *ref, const struct aa_flip_options *opt,
+			    struct aa_flip_reference **out, struct aa_error *err)
+{
+	return reference_build(opt, ref->width, ref->height, ref->pixels, true, out, err);
+}
+
+int aa_flip_reference_linear(const struct aa_image_rgbaf *ref, const struct aa_flip_options *opt,
+			     struct aa_flip_reference **out, struct aa_error *err)
+{
+	return reference_build(opt, ref->width, ref->height, ref->pixels, false, out, err);
+}
+
+/* The test side through the ring, the reference side read from ref. */
+static int against(const struct aa_flip_reference *ref, int w, int h, const void *pixels, bool rgba8,
+		   const struct aa_flip_options *opt, float *map, struct aa_error *err)
+{
+	if (!ref)
+		return aa_error_set(err, AA_ERR_INVALID, "", "no FLIP reference");
+	if (opt && opt->ppd != 0.0f && opt->ppd != ref->filters.ppd)
+		return aa_error_set(err, AA_ERR_INVALID, "ppd",
+				    "the FLIP reference was made at %g pixels per degree, not %g",
+				    (double)ref->filters.ppd, (double)opt->ppd);
+	struct flip_run run;
+	struct aa_flip_filters unused;
+	const struct aa_flip_options o = { .ppd = ref->filters.ppd, .threads = opt ? opt->threads : 0 };
+	if (run_setup(&run, &unused, &o, ref->width, ref->height, w, h, pixels, pixels, map, err) != 0)
+		return -1;
+	run.f = &ref->filters;
+	if (rgba8) {
+		for (int v = 0; v < 256; v++)
+			run.srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
+		run.src[1].rgba8 = pixels;
+	} else {
+		run.src[1].rgbaf = pixels;
+	}
+	run.image_begin = 1;
+	run.ref_in = ref;
+	return run_bands(&run, err);
+}
+
+int aa_flip_ldr_rgba8_against(const struct aa_flip_reference *ref, const struct aa_image_rgba8 *test,
+			      const struct aa_flip_options *opt, float *map, struct aa_error *err)
+{
+	return against(ref, test->width, test->height, test->pixels, true, opt, map, err);
+}
+
+int aa_flip_ldr_linear_against(const struct aa_flip_reference *ref, const struct aa_image_rgbaf *test,
+			       const struct aa_flip_options *opt, float *map, struct aa_error *err)
+{
+	return against(ref, test->width, test->height, test->pixels, false, opt, map, err);
 }
 
 int aa_flip_exposure_range(const struct aa_image_rgbaf *ref, enum aa_flip_tone_mapper tm, float *start,

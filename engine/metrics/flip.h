@@ -58,6 +58,24 @@ int aa_flip_ldr_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rg
 /* LDR-FLIP of two linear-RGB float images (alpha ignored); values are clamped to [0,1] first. */
 int aa_flip_ldr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,
 		       const struct aa_flip_options *opt, float *map, struct aa_error *err);
+
+/* The reference side of LDR-FLIP (its colour transform, filtering and feature detection), computed once
+ * and shared by every image compared against it, read-only (several threads may use one at once). */
+struct aa_flip_reference;
+/* From an 8-bit sRGB or a linear float image (alpha ignored) at opt's ppd (opt->threads is used to make it).
+ * *out is NULL or a reference made before, which is remade in its own memory when the size is the same
+ * (a scorer keeps one for all its frames). On failure *out is NULL and the old one freed. */
+int aa_flip_reference_rgba8(const struct aa_image_rgba8 *ref, const struct aa_flip_options *opt,
+			    struct aa_flip_reference **out, struct aa_error *err);
+int aa_flip_reference_linear(const struct aa_image_rgbaf *ref, const struct aa_flip_options *opt,
+			     struct aa_flip_reference **out, struct aa_error *err);
+void aa_flip_reference_free(struct aa_flip_reference *ref);
+/* The map of aa_flip_ldr_rgba8 (resp. _linear) of ref's image and test, the same to the bit. opt may be NULL;
+ * a non-zero opt->ppd must be the reference's. */
+int aa_flip_ldr_rgba8_against(const struct aa_flip_reference *ref, const struct aa_image_rgba8 *test,
+			      const struct aa_flip_options *opt, float *map, struct aa_error *err);
+int aa_flip_ldr_linear_against(const struct aa_flip_reference *ref, const struct aa_image_rgbaf *test,
+			       const struct aa_flip_options *opt, float *map, struct aa_error *err);
 /* HDR-FLIP of two linear-RGB float images (alpha ignored). Values must be finite. info may be NULL. */
 int aa_flip_hdr(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,
 		const struct aa_flip_options *opt, float *map, struct aa_flip_hdr_info *info, struct aa_error *err);

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -411,8 +412,12 @@ static void run_workers(struct spectrum_worker *workers, int count, void *(*fn)(
 	}
 }
 
-int aa_fourier_band_energy(const double *const *fields, int count, int width, int height, int threads,
-			   double energy[AA_FOURIER_BANDS], struct aa_error *err)
+/* Writes complex field `pair` (0, 1, ...: z = field 2 pair + i field 2 pair + 1) of `pixels` values. */
+typedef void (*field_fill)(const void *source, int pair, struct cpx *field, size_t pixels);
+
+/* The band energies of `count` real fields given by fill, two per complex transform. */
+static int band_energy(field_fill fill, const void *source, int count, int width, int height, int threads,
+		       double energy[AA_FOURIER_BANDS], struct aa_error *err)
 {
 	for (int b = 0; b < AA_FOURIER_BANDS; b++)
 		energy[b] = 0.0;
@@ -453,9 +458,7 @@ int aa_fourier_band_energy(const double *const *fields, int count, int width, in
 		job.fy2 = fy2;
 		/* Two real fields per complex transform: z = f[i] + i f[i+1]. */
 		for (int i = 0; i < count; i += 2) {
-			const double *re = fields[i], *im = i + 1 < count ? fields[i + 1] : NULL;
-			for (size_t p = 0; p < pixels; p++)
-				job.field[p] = (struct cpx){ re[p], im ? im[p] : 0.0 };
+			fill(source, i / 2, job.field, pixels);
 			run_workers(workers, nthreads, transform_rows);
 			run_workers(workers, nthreads, transform_columns);
 		}
@@ -482,6 +485,46 @@ int aa_fourier_band_energy(const double *const *fields, int count, int width, in
 	return 0;
 }
 
+struct given_fields {
+	const double *const *fields;
+	int count;
+};
+
+static void fill_from_fields(const void *source, int pair, struct cpx *field, size_t pixels)
+{
+	const struct given_fields *g = source;
+	const double *re = g->fields[2 * pair], *im = 2 * pair + 1 < g->count ? g->fields[2 * pair + 1] : NULL;
+	for (size_t p = 0; p < pixels; p++)
+		field[p] = (struct cpx){ re[p], im ? im[p] : 0.0 };
+}
+
+int aa_fourier_band_energy(const double *const *fields, int count, int width, int height, int threads,
+			   double energy[AA_FOURIER_BANDS], struct aa_error *err)
+{
+	const struct given_fields g = { fields, count };
+	return band_energy(fill_from_fields, &g, count, width, height, threads, energy, err);
+}
+
+/* The error image test - ref of two 8-bit images, written straight into the transform's field (R + i G,
+ * then B + i 0): the same doubles as three error planes copied in, without the planes. */
+struct image_pair {
+	const struct aa_image_rgba8 *ref, *test;
+};
+
+static void fill_from_difference(const void *source, int pair, struct cpx *field, size_t pixels)
+{
+	const struct image_pair *ip = source;
+	const uint8_t *r = ip->ref->pixels, *t = ip->test->pixels;
+	if (pair == 0) {
+		for (size_t p = 0; p < pixels; p++)
+			field[p] = (struct cpx){ (double)t[4 * p] - (double)r[4 * p],
+						 (double)t[4 * p + 1] - (double)r[4 * p + 1] };
+		return;
+	}
+	for (size_t p = 0; p < pixels; p++)
+		field[p] = (struct cpx){ (double)t[4 * p + 2] - (double)r[4 * p + 2], 0.0 };
+}
+
 int aa_fourier_bands_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 			   double band_mse[AA_FOURIER_BANDS], struct aa_error *err)
 {
@@ -493,17 +536,9 @@ int aa_fourier_bands_rgba8(const struct aa_image_rgba8 *ref, const struct aa_ima
 	if (!ref->pixels || !test->pixels || ref->width <= 0 || ref->height <= 0)
 		return aa_error_set(err, AA_ERR_INVALID, "", "cannot compare empty images");
 	const size_t n = (size_t)ref->width * ref->height;
-	double *e = malloc(3 * n * sizeof *e);
-	if (!e)
-		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for the error image");
-	for (size_t p = 0; p < n; p++)
-		for (int c = 0; c < 3; c++)
-			e[c * n + p] = (double)test->pixels[4 * p + c] - (double)ref->pixels[4 * p + c];
-	const double *fields[3] = { e, e + n, e + 2 * n };
+	const struct image_pair ip = { ref, test };
 	double energy[AA_FOURIER_BANDS];
-	int rc = aa_fourier_band_energy(fields, 3, ref->width, ref->height, 0, energy, err);
-	free(e);
-	if (rc != 0)
+	if (band_energy(fill_from_difference, &ip, 3, ref->width, ref->height, 0, energy, err) != 0)
 		return -1;
 	for (int b = 0; b < AA_FOURIER_BANDS; b++)
 		band_mse[b] = energy[b] / (3.0 * (double)n);

@@ -150,6 +150,13 @@ long aa_metrics_count_over(const struct aa_image_rgba8 *ref, const struct aa_ima
 int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 			  struct aa_metrics *out, struct aa_image_rgba8 *flip_image, struct aa_error *err)
 {
+	return aa_metrics_perceptual_shared(NULL, ref, test, out, flip_image, err);
+}
+
+int aa_metrics_perceptual_shared(const struct aa_flip_reference *flip_ref, const struct aa_image_rgba8 *ref,
+				 const struct aa_image_rgba8 *test, struct aa_metrics *out,
+				 struct aa_image_rgba8 *flip_image, struct aa_error *err)
+{
 	out->flip_mean = NAN;
 	if (check_same_size(ref->width, ref->height, test->width, test->height, err) != 0 ||
 	    !have_pixels(ref->pixels, test->pixels, err))
@@ -158,7 +165,8 @@ int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_imag
 	float *map = malloc(n * sizeof *map);
 	if (!map)
 		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for a %dx%d FLIP map", ref->width, ref->height);
-	int rc = aa_flip_ldr_rgba8(ref, test, NULL, map, err);
+	int rc = flip_ref ? aa_flip_ldr_rgba8_against(flip_ref, test, NULL, map, err)
+			  : aa_flip_ldr_rgba8(ref, test, NULL, map, err);
 	if (rc == 0) {
 		out->flip_mean = aa_flip_mean(map, n); /* the weighted quartiles (aa_flip_pool) are not reported */
 		if (flip_image && flip_image->width == ref->width && flip_image->height == ref->height)

@@ -44,6 +44,11 @@ long aa_metrics_count_over(const struct aa_image_rgba8 *ref, const struct aa_ima
  * map in the magma colour map. Returns -1 with err on a size mismatch or when memory runs out. */
 int aa_metrics_perceptual(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 			  struct aa_metrics *out, struct aa_image_rgba8 *flip_image, struct aa_error *err);
+/* The same with the FLIP reference side made once for ref (aa_flip_reference_rgba8 at the default ppd),
+ * for scoring several images against one reference; flip_ref NULL makes it here. Identical results. */
+int aa_metrics_perceptual_shared(const struct aa_flip_reference *flip_ref, const struct aa_image_rgba8 *ref,
+				 const struct aa_image_rgba8 *test, struct aa_metrics *out,
+				 struct aa_image_rgba8 *flip_image, struct aa_error *err);
 
 /* Linear-float mode: MSE/PSNR on linear values with peak 1.0 (values are not clamped). */
 int aa_metrics_psnr_linear(const struct aa_image_rgbaf *ref, const struct aa_image_rgbaf *test,

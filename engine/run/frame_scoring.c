@@ -35,6 +35,8 @@ struct aa_scoring {
 	struct aa_error err;
 	/* a frame's methods, shared out between the thread and its helper */
 	struct aa_scoring_frame *scoring;
+	struct aa_flip_reference *flip_ref; /* the frame's FLIP reference side, made once, read by both; its
+					     * memory is kept from frame to frame */
 	int next_method;
 	struct aa_error method_err[AA_MAX_METHODS];
 };
@@ -82,7 +84,7 @@ static int score_method(struct aa_scoring *sc, const struct aa_scoring_frame *f,
 	fr->nonfinite = aa_count_nonfinite(output);
 	aa_image_encode_srgb8(output, &m->out8);
 	if (aa_metrics_compare(&f->ref8, &m->out8, &fr->metrics, err) ||
-	    aa_metrics_perceptual(&f->ref8, &m->out8, &fr->metrics, &m->flip8, err))
+	    aa_metrics_perceptual_shared(sc->flip_ref, &f->ref8, &m->out8, &fr->metrics, &m->flip8, err))
 		return -1;
 	fr->over_threshold = aa_metrics_count_over(&f->ref8, &m->out8, sc->spec->over_threshold);
 	diff_image(&f->ref8, &m->out8, &m->diff8);
@@ -143,6 +145,9 @@ static int score_frame(struct aa_scoring *sc, struct aa_scoring_frame *f, struct
 	sc->scoring = f;
 	sc->next_method = 0;
 	memset(sc->method_err, 0, sizeof sc->method_err);
+	/* The reference's side of FLIP is the same for every method: made here, before the helper starts. */
+	if (aa_flip_reference_rgba8(&f->ref8, NULL, &sc->flip_ref, err))
+		return -1;
 	pthread_t helper;
 	const bool helped = !sc->inline_scoring && count > 1 && pthread_create(&helper, NULL, helper_main, sc) == 0;
 	score_methods(sc);
@@ -276,6 +281,7 @@ void aa_scoring_destroy(struct aa_scoring *sc)
 		aa_image_rgba8_free(&sc->m[i].prev8);
 	}
 	aa_image_rgba8_free(&sc->prev_ref8);
+	aa_flip_reference_free(sc->flip_ref);
 	free(sc);
 }
 

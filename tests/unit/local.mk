@@ -5,6 +5,7 @@ UNIT_TESTS = \
 	tests/unit/test_draw_order \
 	tests/unit/test_metrics \
 	tests/unit/test_flip \
+	tests/unit/test_flip_shared \
 	tests/unit/test_fourier \
 	tests/unit/test_exact_coverage \
 	tests/unit/test_scene \
@@ -35,6 +36,7 @@ UNIT_TESTS = \
 # what each pins:
 #  math, draw_order: matrices and the order transparent draws sort in
 #  metrics, flip, fourier: PSNR/SSIM on images with known answers, FLIP and the Fourier bands
+#  flip_shared: FLIP's reference side made once per frame gives the one-shot map; the scorer's metrics equal each method's alone
 #  exact_coverage: the analytic coverage of 2D test patterns
 #  scene, scene_known: scene files, and a mesh file's node transform, uvs and material defaults
 #  mesh_text_check, mesh_files: the strict OBJ/OFF/PLY/STL readers; every test asset, every broken file
