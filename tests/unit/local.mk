@@ -58,3 +58,4 @@ UNIT_TESTS = \
 #  compare_arithmetic: every number aalab compare prints, worked out by hand; what it refuses
 check_PROGRAMS += $(UNIT_TESTS) tests/tools/metrics_tool
 TESTS += $(UNIT_TESTS)
+EXTRA_DIST += tests/unit/flip_images.h
