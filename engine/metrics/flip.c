@@ -494,6 +494,19 @@ static int run_setup(struct flip_run *run, struct aa_flip_filters *f, const stru
 	return 0;
 }
 
+/* Image `slot` of a run reads `pixels`, 8-bit sRGB or linear float. The reference tool reads v / 255 and
+ * decodes sRGB in float; a table holds the 256 results. */
+static void run_source(struct flip_run *run, int slot, const void *pixels, bool rgba8)
+{
+	if (rgba8) {
+		for (int v = 0; v < 256; v++)
+			run->srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
+		run->src[slot].rgba8 = pixels;
+	} else {
+		run->src[slot].rgbaf = pixels;
+	}
+}
+
 int aa_flip_ldr_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rgba8 *test,
 		      const struct aa_flip_options *opt, float *map, struct aa_error *err)
 {
@@ -502,11 +515,8 @@ int aa_flip_ldr_rgba8(const struct aa_image_rgba8 *ref, const struct aa_image_rg
 	if (run_setup(&run, &f, opt, ref->width, ref->height, test->width, test->height, ref->pixels,
 		      test->pixels, map, err) != 0)
 		return -1;
-	/* The reference tool reads v / 255 and decodes sRGB in float; a table holds the 256 results. */
-	for (int v = 0; v < 256; v++)
-		run.srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
-	run.src[0].rgba8 = ref->pixels;
-	run.src[1].rgba8 = test->pixels;
+	run_source(&run, 0, ref->pixels, true);
+	run_source(&run, 1, test->pixels, true);
 	return run_bands(&run, err);
 }
 
@@ -567,13 +577,7 @@ static int reference_build(const struct aa_flip_options *opt, int w, int h, cons
 		aa_flip_reference_free(ref);
 		return aa_error_set(err, AA_ERR_LIMIT, "", "out of memory for the FLIP reference of a %dx%d image", w, h);
 	}
-	if (rgba8) {
-		for (int v = 0; v < 256; v++)
-			run.srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
-		run.src[0].rgba8 = pixels;
-	} else {
-		run.src[0].rgbaf = pixels;
-	}
+	run_source(&run, 0, pixels, rgba8);
 	run.map = NULL;
 	run.image_begin = 0;
 	run.image_end = 1;
@@ -614,13 +618,7 @@ static int against(const struct aa_flip_reference *ref, int w, int h, const void
 	if (run_setup(&run, &unused, &o, ref->width, ref->height, w, h, pixels, pixels, map, err) != 0)
 		return -1;
 	run.f = &ref->filters;
-	if (rgba8) {
-		for (int v = 0; v < 256; v++)
-			run.srgb_table[v] = aa_flip_srgb_to_linear((float)v / 255.0f);
-		run.src[1].rgba8 = pixels;
-	} else {
-		run.src[1].rgbaf = pixels;
-	}
+	run_source(&run, 1, pixels, rgba8);
 	run.image_begin = 1;
 	run.ref_in = ref;
 	return run_bands(&run, err);
