@@ -106,6 +106,11 @@ static int setup(struct job_state *js, struct aa_error *err)
 	const struct aa_job_spec *spec = js->spec;
 	struct aa_job_result *res = js->result;
 	char file[1024] = "";
+	struct aa_gpu *gpu = &js->engine->gpu;
+	/* the set-up is cut at its steps too (the scene's load, its upload and targets, each method's
+	 * creation): a cancel waits for one step, not for all of them */
+	if (aa_gpu_interrupted(gpu, err))
+		return -1;
 	if (js->borrowed) {
 		js->scene = (struct aa_scene *)js->borrowed;
 	} else if (aa_scene_resolve(spec->scene, file, sizeof file, err) ||
@@ -123,9 +128,9 @@ static int setup(struct job_state *js, struct aa_error *err)
 	}
 	struct aa_frame_plan plan;
 	aa_frame_plan_build(js->scene, spec, &plan);
-	struct aa_gpu *gpu = &js->engine->gpu;
-	struct aa_scene_upload *upload = aa_engine_scene_upload(js->engine, js->scene, err);
-	if (!upload ||
+	struct aa_scene_upload *upload = NULL;
+	if (aa_gpu_interrupted(gpu, err) || !(upload = aa_engine_scene_upload(js->engine, js->scene, err)) ||
+	    aa_gpu_interrupted(gpu, err) ||
 	    aa_engine_renderer(js->engine, js->scene, upload, &plan, spec->width, spec->height, &js->renderer, err) ||
 	    aa_gpu_timer_create(gpu, &js->timer, err) ||
 	    aa_reference_create(js->renderer, spec->reference_samples, &js->reference, err))
@@ -174,6 +179,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 		m->timed = calloc((size_t)spec->frames * (size_t)spec->timing_repeat, sizeof *m->timed);
 		if (!m->frames || !m->timed)
 			return aa_error_set(err, AA_ERR_INTERNAL, "", "out of memory");
+		if (aa_gpu_interrupted(gpu, err))
+			return -1;
 		if (js->debug_targets)
 			js->debug_targets->owner = i;
 		int failed_create = aa_method_create(ms->method, js->renderer, &ms->params, m, &js->states[i], err);
@@ -186,6 +193,8 @@ static int setup(struct job_state *js, struct aa_error *err)
 			return -1;
 		}
 		if (spec->timing_repeat > 1 && has_history(ms)) {
+			if (aa_gpu_interrupted(gpu, err))
+				return -1;
 			struct aa_method_result *scratch = calloc(1, sizeof *scratch); /* its memory is not the method's */
 			int failed = !scratch ||
 				     aa_method_create(ms->method, js->renderer, &ms->params, scratch, &js->twins[i], err);

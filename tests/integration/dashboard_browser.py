@@ -309,14 +309,20 @@ def main():
                 bad.append((cid, method, ptips[:1], want[:1]))
         check(tips and not bad, "each trend point's tooltip names its method, commit and job, its median GPU ms and "
               "p10-p90 spread as results.json has them: %s" % bad[:2])
-        # and a pointer over a point shows that text
-        at = b.eval("""(() => { document.querySelector('.trend').scrollIntoView({block: 'center'});
-            for (const p of document.querySelectorAll('.trend .trend-point')) {  /* one no other point covers */
-              const r = p.getBoundingClientRect(), x = r.x + r.width / 2, y = r.y + r.height / 2;
-              if (document.elementFromPoint(x, y) === p) return [x, y, p.dataset.tip]; }
-            return [0, 0, 'no uncovered point']; })()""")
-        b.mouse("mouseMoved", at[0], at[1])
-        shown = b.eval("(() => { const t = document.getElementById('tooltip'); return t && t.style.display === 'block' ? t.textContent : null; })()")
+        # and a pointer over a point shows that text: the point is found again and the pointer moved to it
+        # (half a pixel aside each time, so that it is a move) until the tooltip shows, for up to 10 s, since
+        # a poll may redraw the chart between finding the point and the move
+        tip_shown = "(() => { const t = document.getElementById('tooltip'); return t && t.style.display === 'block' ? t.textContent : null; })()"
+        for attempt in range(20):
+            at = b.eval("""(() => { document.querySelector('.trend').scrollIntoView({block: 'center'});
+                for (const p of document.querySelectorAll('.trend .trend-point')) {  /* one no other point covers */
+                  const r = p.getBoundingClientRect(), x = r.x + r.width / 2, y = r.y + r.height / 2;
+                  if (document.elementFromPoint(x, y) === p) return [x, y, p.dataset.tip]; }
+                return [0, 0, 'no uncovered point']; })()""")
+            b.mouse("mouseMoved", at[0] + 0.5 * (attempt % 2), at[1])
+            if b.wait_for(tip_shown, 0.5):
+                break
+        shown = b.eval(tip_shown)
         check(shown == at[2], "hovering a trend point shows its tooltip: %s" % shown)
     finally:
         if b:

@@ -1,7 +1,8 @@
 /* The engine on the real Vulkan device (lavapipe here), with validation on when installed: every scene
  * with every method stays finite, the frame plan runs only what is needed, the sampled reference
- * converges to the exact coverage, and supersampling beats no AA. */
+ * converges to the exact coverage, supersampling beats no AA, and a stop is taken during the set-up. */
 #include <math.h>
+#include <stdatomic.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -243,6 +244,41 @@ static void test_uploaded_scene_is_reused(void **state)
 	aa_scene_free(scene);
 }
 
+static int count_events(const struct aa_event *ev, void *user)
+{
+	int *counts = user;
+	counts[ev->type]++;
+	return 0;
+}
+
+/* A stop asked before a job's set-up ends it there: cancelled before any upload or event, and the next
+ * job on the engine runs. */
+static void test_stop_during_set_up(void **state)
+{
+	(void)state;
+	const char *methods[] = {"none", "msaa:4"};
+	struct aa_job_spec spec;
+	fixture_spec(&spec, "moving-sphere", methods, 2, 64, 36, 2, 2);
+	atomic_int stop = 1;
+	aa_engine_set_interrupt(fixture_engine, &stop);
+	struct aa_upload_stats before = aa_engine_upload_stats(fixture_engine);
+	int counts[AA_EVENT_REFERENCE_KEY + 1] = {0};
+	struct aa_job_result *r = NULL;
+	struct aa_error err = {0};
+	assert_int_not_equal(aa_job_run(fixture_engine, &spec, count_events, counts, &r, &err), 0);
+	struct aa_upload_stats after = aa_engine_upload_stats(fixture_engine);
+	aa_engine_set_interrupt(fixture_engine, NULL);
+	if (r)
+		fixture_free(r);
+	assert_int_equal(err.code, AA_ERR_CANCELLED);
+	assert_int_equal(counts[AA_EVENT_JOB_STARTED], 0);
+	assert_int_equal(after.misses + after.hits, before.misses + before.hits);
+	stop = 0;
+	aa_engine_set_interrupt(fixture_engine, &stop);
+	fixture_free(fixture_run(&spec, NULL, NULL, NULL));
+	aa_engine_set_interrupt(fixture_engine, NULL);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -251,6 +287,7 @@ int main(void)
 		cmocka_unit_test(test_ssaa_beats_none),
 		cmocka_unit_test(test_every_scene_every_method_finite),
 		cmocka_unit_test(test_uploaded_scene_is_reused),
+		cmocka_unit_test(test_stop_during_set_up),
 	};
 	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }
