@@ -110,7 +110,7 @@ static int setup(struct job_state *js, struct aa_error *err)
 	/* the set-up is cut at its steps too (the scene's load, its upload and targets, each method's
 	 * creation): a cancel waits for one step, not for all of them */
 	if (aa_gpu_interrupted(gpu, err))
-		return -1;
+		return -1; /* before the scene is even looked up */
 	if (js->borrowed) {
 		js->scene = (struct aa_scene *)js->borrowed;
 	} else if (aa_scene_resolve(spec->scene, file, sizeof file, err) ||

@@ -273,6 +273,15 @@ static void test_stop_during_set_up(void **state)
 	assert_int_equal(err.code, AA_ERR_CANCELLED);
 	assert_int_equal(counts[AA_EVENT_JOB_STARTED], 0);
 	assert_int_equal(after.misses + after.hits, before.misses + before.hits);
+	/* before the scene is even looked up: a stopped job names no missing scene */
+	struct aa_job_spec missing = spec;
+	snprintf(missing.scene, sizeof missing.scene, "no-such-scene");
+	memset(&err, 0, sizeof err);
+	r = NULL;
+	assert_int_not_equal(aa_job_run(fixture_engine, &missing, NULL, NULL, &r, &err), 0);
+	if (r)
+		fixture_free(r);
+	assert_int_equal(err.code, AA_ERR_CANCELLED);
 	stop = 0;
 	aa_engine_set_interrupt(fixture_engine, &stop);
 	fixture_free(fixture_run(&spec, NULL, NULL, NULL));
