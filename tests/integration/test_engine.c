@@ -263,25 +263,25 @@ static void test_stop_during_set_up(void **state)
 	aa_engine_set_interrupt(fixture_engine, &stop);
 	struct aa_upload_stats before = aa_engine_upload_stats(fixture_engine);
 	int counts[AA_EVENT_REFERENCE_KEY + 1] = {0};
-	struct aa_job_result *r = NULL;
-	struct aa_error err = {0};
-	assert_int_not_equal(aa_job_run(fixture_engine, &spec, count_events, counts, &r, &err), 0);
+	struct aa_job_result *r = NULL, *r_missing = NULL;
+	struct aa_error err = {0}, err_missing = {0};
+	const int rc = aa_job_run(fixture_engine, &spec, count_events, counts, &r, &err);
 	struct aa_upload_stats after = aa_engine_upload_stats(fixture_engine);
-	aa_engine_set_interrupt(fixture_engine, NULL);
-	if (r)
-		fixture_free(r);
-	assert_int_equal(err.code, AA_ERR_CANCELLED);
-	assert_int_equal(counts[AA_EVENT_JOB_STARTED], 0);
-	assert_int_equal(after.misses + after.hits, before.misses + before.hits);
 	/* before the scene is even looked up: a stopped job names no missing scene */
 	struct aa_job_spec missing = spec;
 	snprintf(missing.scene, sizeof missing.scene, "no-such-scene");
-	memset(&err, 0, sizeof err);
-	r = NULL;
-	assert_int_not_equal(aa_job_run(fixture_engine, &missing, NULL, NULL, &r, &err), 0);
+	const int rc_missing = aa_job_run(fixture_engine, &missing, NULL, NULL, &r_missing, &err_missing);
+	aa_engine_set_interrupt(fixture_engine, NULL);
 	if (r)
 		fixture_free(r);
+	if (r_missing)
+		fixture_free(r_missing);
+	assert_int_not_equal(rc, 0);
 	assert_int_equal(err.code, AA_ERR_CANCELLED);
+	assert_int_equal(counts[AA_EVENT_JOB_STARTED], 0);
+	assert_int_equal(after.misses + after.hits, before.misses + before.hits);
+	assert_int_not_equal(rc_missing, 0);
+	assert_int_equal(err_missing.code, AA_ERR_CANCELLED);
 	stop = 0;
 	aa_engine_set_interrupt(fixture_engine, &stop);
 	fixture_free(fixture_run(&spec, NULL, NULL, NULL));
