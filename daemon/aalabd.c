@@ -13,6 +13,7 @@
 
 #include "daemon.h"
 #include "jobs.h"
+#include "reference/reference_cache.h"
 #include "render_priority.h"
 #include "stream.h"
 #include "util/file_open.h"
@@ -465,6 +466,12 @@ int main(int argc, char **argv)
 	snprintf(store->reference_cache_bytes, sizeof store->reference_cache_bytes, "%llu",
 		 (unsigned long long)d->cfg.reference_cache_bytes);
 	struct aa_error aerr = {0};
+	struct aa_reference_cache *sweep;
+	/* the store's temporary files of writers that died (a crash, kill -9) go now, not at its first write */
+	if (references[0] && aa_reference_cache_open(references, d->cfg.reference_cache_bytes, &sweep, &aerr) == 0) {
+		aa_reference_cache_remove_stale(sweep, &aerr);
+		aa_reference_cache_close(sweep);
+	}
 	struct aa_engine_options eo = {.device = d->cfg.device[0] ? d->cfg.device : NULL};
 	if (open_listeners(d, argc, argv, err, sizeof err)) {
 		fprintf(stderr, "aalabd: %s\n", err);

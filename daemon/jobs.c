@@ -16,6 +16,7 @@
 #include "jobs.h"
 #include "methods/user_method.h"
 #include "results/results.h"
+#include "util/file_io.h"
 #include "run/job_spec.h"
 
 const char *job_state_name(enum job_state s)
@@ -219,6 +220,20 @@ static uint64_t tree_bytes(const char *dir)
 	tree_bytes_acc = 0;
 	nftw(dir, add_size, 16, FTW_PHYS);
 	return tree_bytes_acc;
+}
+
+/* The temporary files of writes that a crash cut short, in a job's folder (its subfolders go with
+ * clear_results when the job runs again). */
+static void remove_stale_temps(const char *dir)
+{
+	DIR *d = opendir(dir);
+	if (!d)
+		return;
+	struct dirent *de;
+	while ((de = readdir(d)))
+		if (de->d_name[0] == '.')
+			aa_file_remove_stale_temp(dir, de->d_name);
+	closedir(d);
 }
 
 /* Clears what a run leaves in a job directory, before a job runs (again) from the start; a failed run
@@ -437,6 +452,9 @@ int store_open(struct store *s, const char *state_dir, char *err, size_t err_siz
 		unsigned long n = strtoul(de->d_name, NULL, 10);
 		if (n >= s->next_id)
 			s->next_id = n + 1;
+		char job_path[1400];
+		snprintf(job_path, sizeof job_path, "%s/%s", s->dir, de->d_name);
+		remove_stale_temps(job_path);
 		struct job *job = load_job(s, de->d_name);
 		if (job)
 			store_insert(s, job);

@@ -287,6 +287,8 @@ static int list_entries(const struct aa_reference_cache *c, struct entry_file **
 		struct dirent *f;
 		while ((f = readdir(d))) {
 			const size_t len = strlen(f->d_name);
+			if (f->d_name[0] == '.') /* a writer's temporary file: removed when its writer died */
+				aa_file_remove_stale_temp(path, f->d_name);
 			if (len != 68 || strcmp(f->d_name + 64, ".ref") != 0 || f->d_name[0] == '.')
 				continue;
 			char file[2300];
@@ -510,6 +512,16 @@ void aa_reference_cache_close(struct aa_reference_cache *c)
 	}
 	pthread_mutex_destroy(&c->lock);
 	free(c);
+}
+
+int aa_reference_cache_remove_stale(struct aa_reference_cache *c, struct aa_error *err)
+{
+	struct entry_file *list;
+	int n;
+	if (list_entries(c, &list, &n, err)) /* the scan removes them */
+		return -1;
+	free(list);
+	return 0;
 }
 
 int aa_reference_cache_usage(struct aa_reference_cache *c, struct aa_reference_cache_usage *u, struct aa_error *err)

@@ -69,6 +69,8 @@ int aa_reference_cache_clear(struct aa_reference_cache *c, uint64_t *removed, st
 int aa_reference_cache_keys(struct aa_reference_cache *c, char (**keys)[65], int *count, struct aa_error *err);
 /* Removes least recently used entries until the folder holds at most max_bytes. */
 int aa_reference_cache_trim(struct aa_reference_cache *c, uint64_t max_bytes, struct aa_error *err);
+/* Removes the temporary files of writers that died (every scan of the folder does, this scans only). */
+int aa_reference_cache_remove_stale(struct aa_reference_cache *c, struct aa_error *err);
 
 /* Reads a size setting: a whole number of bytes, or with K, M, G or T (powers of 1024); at least
  * AA_REFERENCE_CACHE_MIN_BYTES. -1 with err naming field. */

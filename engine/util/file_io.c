@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -68,6 +69,9 @@ int aa_file_write_atomic(const char *dir, const char *name, const struct aa_file
 	const int fd = mkstemp(tmp);
 	if (fd < 0)
 		return aa_error_set(err, AA_ERR_IO, "", "cannot create a file in %s: %s", dir, strerror(errno));
+	/* held until the file is renamed or its writer dies: a temporary file whose lock can be taken was
+	 * left by a writer that died (aa_file_remove_stale_temp) */
+	flock(fd, LOCK_EX);
 	for (int i = 0; i < count; i++) {
 		const char *data = parts[i].data;
 		for (size_t done = 0; done < parts[i].size;) {
@@ -111,6 +115,35 @@ fail:
 	close(fd);
 	unlink(tmp);
 	return -1;
+}
+
+bool aa_file_is_temp_name(const char *name)
+{
+	const size_t len = strlen(name);
+	if (len < 9 || name[0] != '.' || name[len - 7] != '.')
+		return false;
+	for (size_t i = len - 6; i < len; i++)
+		if (!((name[i] >= 'A' && name[i] <= 'Z') || (name[i] >= 'a' && name[i] <= 'z') ||
+		      (name[i] >= '0' && name[i] <= '9')))
+			return false;
+	return true;
+}
+
+int aa_file_remove_stale_temp(const char *dir, const char *name)
+{
+	char path[4096];
+	if (!aa_file_is_temp_name(name) || (size_t)snprintf(path, sizeof path, "%s/%s", dir, name) >= sizeof path)
+		return 0;
+	const int fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0)
+		return 0;
+	struct stat st;
+	int removed = 0;
+	/* a live writer holds the lock: its file stays */
+	if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && flock(fd, LOCK_EX | LOCK_NB) == 0)
+		removed = unlink(path) == 0;
+	close(fd);
+	return removed;
 }
 
 static int make_one(char *path, struct aa_error *err)

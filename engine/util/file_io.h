@@ -4,6 +4,7 @@
 #ifndef AA_FILE_IO_H
 #define AA_FILE_IO_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -21,6 +22,11 @@ struct aa_file_part {
 };
 int aa_file_write_atomic(const char *dir, const char *name, const struct aa_file_part *parts, int count,
 			 struct aa_error *err);
+/* Whether name has the form of aa_file_write_atomic's temporary files. */
+bool aa_file_is_temp_name(const char *name);
+/* Removes dir/name when it is such a temporary file left by a writer that died (the writer holds a lock
+ * on it until the rename; a crash releases it): 1 removed, 0 not (another name, or a live writer's). */
+int aa_file_remove_stale_temp(const char *dir, const char *name);
 
 /* mkdir -p of every folder of path up to its last '/' (path is restored); -1 with err naming it. */
 int aa_file_make_parents(char *path, struct aa_error *err);

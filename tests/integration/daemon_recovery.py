@@ -32,7 +32,19 @@ try:
     with open(os.path.join(d.state, "jobs", b, "job.json")) as f:
         check(json.load(f)["state"] == "queued", "and job %s queued" % b)
 
+    # what a writer cut short by the kill leaves: a temporary file beside its target (planted here too,
+    # so that the start-up sweep is tested whether or not the kill fell inside a write)
+    planted = [os.path.join(d.state, "jobs", a, ".job.json.Crash1"), os.path.join(d.state, "jobs", b, ".results.json.Crash2"),
+               os.path.join(d.state, "references", "ab", "." + "ab" * 32 + ".ref.Crash3")]
+    for path in planted:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as f:
+            f.write("half a file")
+
     d.start()
+    # the store's is gone once the daemon is ready, long before the re-run's first entry is written (a
+    # scan at that write would remove it too)
+    check(not os.path.exists(planted[2]), "the reference store's temporary file is removed at start-up")
     check("job %s was interrupted; it will run again" % a in d.read_log(), "the restart says it re-runs the job")
     c = d.connect()
     for job in (a, b):
@@ -48,10 +60,10 @@ try:
     check(frames == [12, 12], "results.json has all 12 frames of each method")
     pngs = sum(len(f) for _, _, f in os.walk(os.path.join(d.state, "jobs", a, "frames")))
     check(pngs == 12 * 3, "every frame image is stored (%d)" % pngs)
-    # atomic writes go through a temporary ".NAME.XXXXXX" beside NAME (aa_results_write_file_atomic);
-    # the store writes no other hidden files
+    # atomic writes go through a temporary ".NAME.XXXXXX" beside NAME (aa_file_write_atomic); those of
+    # writers that died are removed at start-up (job folders, the reference store) or when the job runs again
     leftovers = [f for _, _, fs in os.walk(d.state) for f in fs if TEMP_FILE.match(f)]
-    check(not leftovers, "no temporary files left (%s)" % leftovers)
+    check(not leftovers, "no temporary files left, the 3 planted ones included (%s)" % leftovers)
 
     # SIGTERM while a job runs: the daemon finishes it, then exits 0
     job = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=6)})["job"]

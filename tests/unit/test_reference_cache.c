@@ -1,6 +1,7 @@
 /* The store of references without a GPU: an entry read back as written; a truncated, bit-flipped or
  * misplaced entry is found, removed and reported; two processes writing one key at once both succeed
- * and leave one whole entry; past its size the store removes the least recently used entries first. */
+ * and leave one whole entry; past its size the store removes the least recently used entries first; a dead
+ * writer's temporary file is removed, a live one's kept. */
 #include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -257,6 +259,45 @@ static void least_recently_used_out(void **state)
 	aa_reference_cache_close(c);
 }
 
+/* A writer that died leaves its temporary file: the next scan of the folder removes it; a live writer's
+ * (it holds the file's lock) and other hidden files stay. */
+static void stale_temporaries(void **state)
+{
+	(void)state;
+	char sub[300];
+	snprintf(sub, sizeof sub, "%s/temps", dir);
+	struct aa_reference_cache *c;
+	struct aa_error err = {0};
+	assert_int_equal(aa_reference_cache_open(sub, 0, &c, &err), 0);
+	uint8_t key[32];
+	make_key(400, key);
+	struct aa_reference_entry e;
+	make_entry(&e, 8, 8, 4);
+	assert_int_equal(aa_reference_cache_put(c, key, &e, &err), 0);
+	char hex[65], dead[600], live[600], other[600];
+	aa_sha256_digest_hex(key, hex);
+	snprintf(dead, sizeof dead, "%s/%.2s/.%s.ref.Dead01", sub, hex, hex);
+	snprintf(live, sizeof live, "%s/%.2s/.%s.ref.Live01", sub, hex, hex);
+	snprintf(other, sizeof other, "%s/%.2s/.keep", sub, hex);
+	const int dead_fd = open(dead, O_CREAT | O_WRONLY, 0600), live_fd = open(live, O_CREAT | O_WRONLY, 0600);
+	const int other_fd = open(other, O_CREAT | O_WRONLY, 0600);
+	assert_true(dead_fd >= 0 && live_fd >= 0 && other_fd >= 0);
+	close(dead_fd); /* its writer is gone: no lock */
+	close(other_fd);
+	assert_int_equal(flock(live_fd, LOCK_EX), 0);
+	struct aa_reference_cache_usage u;
+	assert_int_equal(aa_reference_cache_usage(c, &u, &err), 0);
+	assert_int_equal(u.entries, 1);
+	assert_int_equal(access(dead, F_OK), -1);
+	assert_int_equal(access(live, F_OK), 0);
+	assert_int_equal(access(other, F_OK), 0);
+	close(live_fd); /* now its writer is gone too */
+	assert_int_equal(aa_reference_cache_usage(c, &u, &err), 0);
+	assert_int_equal(access(live, F_OK), -1);
+	aa_reference_entry_free(&e);
+	aa_reference_cache_close(c);
+}
+
 static void settings(void **state)
 {
 	(void)state;
@@ -282,6 +323,7 @@ int main(void)
 		cmocka_unit_test(damaged),
 		cmocka_unit_test(concurrent_writers),
 		cmocka_unit_test(least_recently_used_out),
+		cmocka_unit_test(stale_temporaries),
 		cmocka_unit_test(settings),
 	};
 	return cmocka_run_group_tests(tests, setup, teardown);
