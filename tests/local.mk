@@ -26,7 +26,7 @@ TESTS += $(SCRIPT_TESTS)
 EXTRA_DIST += $(SCRIPT_TESTS) tests/lib.sh tests/lsan.supp tests/oracle/ssim_oracle.py tests/junit.xsd \
 	tests/assets tests/hardcases/small-suite.json tests/hardcases/long-static.json \
 	tests/hardcases/long_run_check.py tests/camrel/shift_scene.py tests/camrel/compare_frames.py \
-	tests/gbaa/eye-plane.json
+	tests/gbaa/eye-plane.json tests/tools/daemon-tests-busy
 
 # golden values (tests/golden/): `make update-golden` computes every golden file anew, shows the diff
 # against the committed one and asks before replacing it (ACCEPT=yes replaces without asking; ACCEPT=no
