@@ -12,10 +12,11 @@
 //   min/max (AABB, seed 001) or Salvi's variance;
 // - production: history is clipped every frame and blended with the current colour by an exponential
 //   moving average whose current-frame weight is 1/n over the first frames after a reset, n counting
-//   them, and current_weight from then on (UE4's r.TemporalAACurrentFrameWeight 0.04; Falcor's alpha
-//   0.1); it rises toward 0.2 as the speed nears 40 px/frame (UE4's TemporalAA.usf), so a fast object
-//   keeps more of itself; before that, anti-flicker (Karis 2014, Falcor): the weight is scaled by d / (d + range),
-//   d the luma distance of history to the nearer side of the clip box and range the box's luma extent.
+//   them, and current_weight from then on (default HDRP's 0.125; UE4's r.TemporalAACurrentFrameWeight
+//   0.04; Falcor's alpha 0.1); it rises toward 1 as the speed nears 40 px/frame (UE4's TemporalAA.usf
+//   rises to 0.2), so a fast object keeps more of itself; before that, anti-flicker (Karis 2014, Falcor):
+//   the weight is scaled by d / (d + range), d the luma distance of history to the nearer side of the
+//   clip box and range the box's luma extent.
 //   No special path for still pixels. The rest applies to accumulate only:
 // - a pixel that has been still for a whole jitter cycle is settled: its history is the mean of its own
 //   jittered samples (each an unbiased sample of the box filter the reference uses) in linear light,

@@ -2,7 +2,7 @@
  * Falcor, HDRP): Halton jitter, the current frame reconstructed at the pixel centre, reprojection with the
  * velocity of the closest-depth pixel in 3x3, history read with Catmull-Rom and clipped every frame toward
  * a variance box in tonemapped YCoCg, and an exponential blend whose current-frame weight settles at
- * current_weight (UE4's 0.04), with Karis' 1/(1+luma) weights. Two other presets: accumulate, the best case
+ * current_weight (HDRP's default 0.125), with Karis' 1/(1+luma) weights. Two other presets: accumulate, the best case
  * an accumulating TAA reaches (a still pixel becomes the exact mean of its own jittered samples over whole
  * cycles; shaders/taa_converge.glsl), and seed001, seed 001's baseline ("Uncharted TAA", after Xu 2016 and
  * Pedersen 2016) as it was. */
@@ -23,9 +23,10 @@ enum { P_JITTER, P_FEEDBACK_MIN, P_FEEDBACK_MAX, P_SHARPEN, P_PRESET, P_HISTORY_
 
 /* Defaults: 16 Halton points as seed 001 uses; INSIDE's feedback range (0.88-0.97), which seed 001 builds
  * on but does not state; sharpen off: against a box-filtered reference every sharpening kernel lowers PSNR
- * (thin-wires, 16 static frames: original -4 dB, normalized -2.6 dB), so it is opt-in. current_weight 0.04
- * is UE4's r.TemporalAACurrentFrameWeight (Falcor's alpha is 0.1); the choices are measured in
- * docs/methods.md. */
+ * (thin-wires, 16 static frames: original -4 dB, normalized -2.6 dB), so it is opt-in. current_weight 0.125
+ * is HDRP's default (taaBaseBlendFactor 0.875 on history), paired there as here with a variance clip,
+ * Catmull-Rom history and YCoCg; UE4's r.TemporalAACurrentFrameWeight is 0.04 and Falcor's alpha 0.1. The
+ * choices are measured in docs/methods.md. */
 static const struct aa_param_def taa_params[] = {
 	{.name = "jitter_length", .type = AA_PARAM_INT, .def = 16, .min = 8, .max = 16,
 	 .allowed = taa_jitter_lengths, .help = "Halton(2,3) points per jitter cycle"},
@@ -61,9 +62,10 @@ static const struct aa_param_def taa_params[] = {
 	{.name = "tonemapped_resolve", .type = AA_PARAM_BOOL, .def = 1, .min = 0, .max = 1,
 	 .help = "weight every colour the resolve sums or blends (the 3x3 filter, history and current, the "
 		 "accumulated means) by Karis' 1/(1+luma), so one HDR sample cannot dominate; false: linear"},
-	{.name = "current_weight", .type = AA_PARAM_FLOAT, .def = 0.04, .min = 0.01, .max = 1.0,
+	{.name = "current_weight", .type = AA_PARAM_FLOAT, .def = 0.125, .min = 0.01, .max = 1.0,
 	 .help = "production only: the current frame's weight in the exponential blend once history holds "
-		 "1/current_weight frames (UE4 0.04, Falcor 0.1); it rises toward 0.2 with speed up to 40 px/frame"},
+		 "1/current_weight frames (HDRP 0.125, Falcor 0.1, UE4 0.04); it rises toward 1 with speed up to "
+		 "40 px/frame"},
 };
 _Static_assert(sizeof taa_params / sizeof taa_params[0] == P_COUNT, "taa_params lists every parameter");
 _Static_assert(P_COUNT <= AA_MAX_PARAMS, "taa's parameters fit in struct aa_method_params");

@@ -378,8 +378,8 @@ static void test_fast_ball(void **state)
 	}
 }
 
-/* The parameters: seed 001's defaults (16 Halton points, INSIDE's feedback range 0.88-0.97), UE4's
- * current-frame weight 0.04 and Karis' weights on; the preset that ran named in path_taken; a parameter
+/* The parameters: seed 001's defaults (16 Halton points, INSIDE's feedback range 0.88-0.97), HDRP's
+ * current-frame weight 0.125 and Karis' weights on; the preset that ran named in path_taken; a parameter
  * that the chosen preset ignores refused, naming the field. Raising the default feedback_max to 0.99
  * barely shows in images (it bounds the history weight only where current and history already agree:
  * moving-sphere 0.02 dB), so it is checked here. */
@@ -392,7 +392,7 @@ static void test_taa_parameters(void **state)
 		struct aa_method_params p;
 		struct aa_error err = {0};
 		assert_int_equal(aa_method_parse(names[k], "methods[0]", &m, &p, &err), 0);
-		double want[] = {16, 0.88, 0.97, 0.04, 1, 0};
+		double want[] = {16, 0.88, 0.97, 0.125, 1, 0};
 		const char *keys[] = {"jitter_length", "feedback_min", "feedback_max", "current_weight",
 				      "tonemapped_resolve", "preset"};
 		for (int i = 0; i < 6; i++) {
