@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "methods/methods.h"
 #include "results/verdicts.h"
 #include "run/job_spec.h"
 
@@ -16,18 +17,36 @@ const char *aa_verdict_name(enum aa_verdict_kind k)
 
 /* The failures docs/hard-cases.md expects, with its reason ("Expected exceptions"); keep the two in step. */
 static const struct {
-	const char *scene, *method;
+	const char *scene, *method, *param;
 	enum aa_verdict_kind kind;
 	const char *reason;
 } expected_failures[] = {
 #include "results/verdicts_expected.h"
 };
 
-const char *aa_verdict_expected(const char *scene, const char *method, enum aa_verdict_kind k)
+/* "name=value" holds for method m run with params p: the parameter exists and its value reads the same. */
+static bool param_holds(const struct aa_method *m, const struct aa_method_params *p, const char *cond)
+{
+	const char *eq = strchr(cond, '=');
+	char name[64], value[64];
+	if (!eq || (size_t)(eq - cond) >= sizeof name)
+		return false;
+	memcpy(name, cond, (size_t)(eq - cond));
+	name[eq - cond] = '\0';
+	const int i = aa_method_param_index(m, name);
+	if (i < 0)
+		return false;
+	aa_method_param_text(m, p, i, value, sizeof value);
+	return !strcmp(value, eq + 1);
+}
+
+const char *aa_verdict_expected(const char *scene, const struct aa_method *m, const struct aa_method_params *p,
+				enum aa_verdict_kind k)
 {
 	for (size_t i = 0; i < sizeof expected_failures / sizeof expected_failures[0]; i++)
 		if (expected_failures[i].kind == k && !strcmp(expected_failures[i].scene, scene) &&
-		    !strcmp(expected_failures[i].method, method))
+		    !strcmp(expected_failures[i].method, m->name) &&
+		    (!expected_failures[i].param || param_holds(m, p, expected_failures[i].param)))
 			return expected_failures[i].reason;
 	return NULL;
 }
@@ -144,7 +163,8 @@ void aa_verdict_judge(const struct aa_job_result *c, int mi, struct aa_verdict *
 	}
 	for (int k = 0; k < AA_VERDICT_COUNT; k++)
 		if (out->state[k] == AA_VERDICT_FAIL && m->method)
-			out->expected[k] = aa_verdict_expected(c->scene_name, m->method->name, (enum aa_verdict_kind)k);
+			out->expected[k] = aa_verdict_expected(c->scene_name, m->method, &m->params,
+							      (enum aa_verdict_kind)k);
 }
 
 json_t *aa_verdicts_json(const struct aa_suite_result *r, int *failed)

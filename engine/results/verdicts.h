@@ -37,9 +37,10 @@ struct aa_verdict {
 const char *aa_verdict_name(enum aa_verdict_kind k);
 /* Method m of one case. */
 void aa_verdict_judge(const struct aa_job_result *c, int m, struct aa_verdict *out);
-/* The reason docs/hard-cases.md gives for a failure of kind k of method (its name, e.g. "taa") on scene,
- * or NULL when the failure is not expected. */
-const char *aa_verdict_expected(const char *scene, const char *method, enum aa_verdict_kind k);
+/* The reason docs/hard-cases.md gives for a failure of kind k of method m run with params p on scene, or
+ * NULL when the failure is not expected (an exception may hold for one value of a parameter only). */
+const char *aa_verdict_expected(const char *scene, const struct aa_method *m, const struct aa_method_params *p,
+				enum aa_verdict_kind k);
 /* {"failed": N, "expected_failures": N, "items": [{"case", "method", "verdicts": {kind: {"state",
  * "value", "expected"?}}}]}; *failed (may be NULL) is the count of failures not expected. */
 json_t *aa_verdicts_json(const struct aa_suite_result *r, int *failed);

@@ -10,11 +10,13 @@
 
 #include <cmocka.h>
 
+#include "methods/methods.h"
 #include "results/verdicts.h"
 
-static const struct aa_method fake_none = { .name = "none" };
-static const struct aa_method fake_taa = { .name = "taa" };
-static const struct aa_method fake_asaa = { .name = "asaa" };
+/* The registry's methods: an expected exception may hold for one value of a parameter only */
+#define fake_none (*aa_method_find("none"))
+#define fake_taa (*aa_method_find("taa"))
+#define fake_asaa (*aa_method_find("asaa"))
 
 #define FRAMES 32
 
@@ -37,6 +39,7 @@ static struct aa_job_result *make_case(const char *scene, const char *path, bool
 	for (int m = 0; m < 2; m++) {
 		struct aa_method_result *mr = &r->methods[m];
 		mr->method = methods[m];
+		aa_method_defaults(methods[m], &mr->params);
 		snprintf(mr->label, sizeof mr->label, "%s", methods[m]->name);
 		mr->frame_count = FRAMES;
 		mr->frames = calloc(FRAMES, sizeof *mr->frames);
@@ -52,6 +55,13 @@ static struct aa_job_result *make_case(const char *scene, const char *path, bool
 static void judge(struct aa_job_result *r, struct aa_verdict *v)
 {
 	aa_verdict_judge(r, 1, v);
+}
+
+/* The second method of r run with `params` ("tonemapped_resolve=true"). */
+static void set_params(struct aa_job_result *r, const char *params)
+{
+	struct aa_error err = {0};
+	assert_int_equal(aa_method_parse_params(r->methods[1].method, params, "methods", &r->methods[1].params, &err), 0);
 }
 
 static void test_all_pass(void **state)
@@ -140,11 +150,26 @@ static void test_vs_none_and_exceptions(void **state)
 	judge(r, &v);
 	assert_int_equal(v.state[AA_VERDICT_VS_NONE], AA_VERDICT_FAIL);
 	assert_non_null(v.expected[AA_VERDICT_VS_NONE]);
+	/* asaa's exception is its linear default's: with Karis' weights the same failure is not expected */
+	set_params(r, "tonemapped_resolve=true");
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_VS_NONE], AA_VERDICT_FAIL);
+	assert_null(v.expected[AA_VERDICT_VS_NONE]);
 	/* within the margin */
 	for (int f = 0; f < FRAMES; f++)
 		r->methods[1].frames[f].metrics.mse = 255.0 * 255.0 / pow(10.0, 2.91);
 	judge(r, &v);
 	assert_int_equal(v.state[AA_VERDICT_VS_NONE], AA_VERDICT_PASS);
+	aa_job_result_free(r);
+	free(r);
+	/* taa's is its linear variant's only: the default (Karis' weights) failing is not excused */
+	r = make_case("hdr-fireflies", "default", false, &fake_taa, 28.5);
+	judge(r, &v);
+	assert_int_equal(v.state[AA_VERDICT_VS_NONE], AA_VERDICT_FAIL);
+	assert_null(v.expected[AA_VERDICT_VS_NONE]);
+	set_params(r, "tonemapped_resolve=false");
+	judge(r, &v);
+	assert_non_null(v.expected[AA_VERDICT_VS_NONE]);
 	aa_job_result_free(r);
 	free(r);
 }
