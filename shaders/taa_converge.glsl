@@ -49,7 +49,13 @@ layout(set = 0, binding = 8) uniform usampler2D ids;     // model IDs
 layout(set = 0, binding = 9) uniform sampler2D sobel;    // this frame's stabilised Sobel image
 layout(set = 0, binding = 10) uniform sampler2D past_depth; // linear depth of the previous frame
 layout(set = 0, binding = 11, r32f) uniform writeonly image2D depth_out;
+#define DISPLAY_BINDING 12
+#else
+#define DISPLAY_BINDING 8
 #endif
+// the displayed output (what the sharpen pass overwrites when sharpen is on): history's colour, written
+// here so that no copy pass follows the resolve, as engines write it
+layout(set = 0, binding = DISPLAY_BINDING, rgba16f) uniform writeonly image2D display_out;
 
 layout(push_constant) uniform Push {
 	vec2 jitter;          // this frame's jitter in pixels: the geometry moved by +jitter
@@ -320,6 +326,7 @@ void main()
 	Neighbourhood nb = gather(p);
 	if (!nb.any_finite) { // every sample poisoned: write finite black rather than keep any of it
 		imageStore(history_out, p, vec4(0.0, 0.0, 0.0, 1.0));
+		imageStore(display_out, p, vec4(0.0, 0.0, 0.0, 1.0));
 #if !PRODUCTION // production's cycle images are 1x1 and unused
 		imageStore(run_out, p, vec4(0.0));
 #endif
@@ -378,6 +385,7 @@ void main()
 	}
 	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
 	imageStore(history_out, p, vec4(h, n));
+	imageStore(display_out, p, vec4(h, 1.0));
 #else
 	// A still pixel's run: how many frames it has been still, the mean of its own samples since the
 	// last whole cycle, and the lumas of its own samples by jitter position (valid once a whole cycle
@@ -424,6 +432,7 @@ void main()
 	run_length = run_length >= 2.0 * cycle ? run_length - cycle : run_length;
 	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
 	imageStore(history_out, p, vec4(h, n));
+	imageStore(display_out, p, vec4(h, 1.0));
 	imageStore(run_out, p, vec4(cycle_mean, run_length));
 #endif
 }

@@ -8,7 +8,7 @@
 
 #include "gpu/gpu.h"
 
-#define AA_COMPUTE_MAX_BINDINGS 12
+#define AA_COMPUTE_MAX_BINDINGS 13
 
 enum aa_compute_binding_kind {
 	AA_COMPUTE_SAMPLED,         /* sampler2D, nearest filtering: texelFetch */

@@ -120,8 +120,9 @@ static int create_images(struct aa_method_state *s, struct aa_method_result *inf
 	struct aa_scene_target_desc d = {.samples = 1, .outputs = outputs};
 	if (aa_scene_target_create_desc(r, &s->scene, r->width, r->height, &d, "scene", info, err) ||
 	    create_history(s, info, err) ||
-	    aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT, target_usage,
-				     "sharpened output", info, err))
+	    aa_renderer_image_create(r, &s->output, r->width, r->height, AA_SCENE_COLOR_FORMAT,
+				     target_usage | (converging(s) ? VK_IMAGE_USAGE_STORAGE_BIT : 0), "displayed output",
+				     info, err))
 		return -1;
 	if (master) {
 		if (aa_renderer_image_create(r, &s->edges, r->width, r->height, VK_FORMAT_R16_SFLOAT, target_usage,
@@ -148,7 +149,7 @@ static int create_resolve(struct aa_method_state *s, int k, struct aa_error *err
 			.comp = s->config.preset == AA_TAA_PRESET_PRODUCTION ?
 				(master ? "taa_master_production.comp" : "taa_production.comp") :
 				(master ? "taa_master_converge.comp" : "taa_converge.comp"),
-			.binding_count = master ? 12 : 8,
+			.binding_count = master ? 13 : 9,
 			.push_size = sizeof(struct taa_converge_push),
 			.bindings = {
 				{AA_COMPUTE_SAMPLED, s->scene.output, NULL},
@@ -165,6 +166,8 @@ static int create_resolve(struct aa_method_state *s, int k, struct aa_error *err
 				{AA_COMPUTE_STORAGE_IMAGE, &s->depth[write], NULL},
 			},
 		};
+		/* the displayed output, written by the resolve itself (binding 8, or 12 after Master TAA's) */
+		d.bindings[master ? 12 : 8] = (struct aa_compute_binding){AA_COMPUTE_STORAGE_IMAGE, &s->output, NULL};
 		return aa_compute_pass_create(r->gpu, &s->converge[k], &d, err);
 	}
 	/* Master TAA also reads the model IDs and this frame's stabilised Sobel image */
@@ -318,7 +321,7 @@ static void record_resolve(struct aa_method_state *s, struct aa_frame_ctx *ctx, 
 	reconstruction_weights(jitter, push.filter_weights);
 	aa_compute_pass_dispatch(ctx->cmd, &s->converge[k], &push, sizeof push, aa_compute_groups(r->width, 8),
 				 aa_compute_groups(r->height, 8), 1);
-	/* the sharpen pass samples what the compute pass wrote */
+	/* the sharpen pass, when on, samples what the compute pass wrote */
 	aa_gpu_image_barrier(ctx->cmd, &s->history[1 - k], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
@@ -345,10 +348,14 @@ int aa_taa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa
 	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-resolve");
 	record_resolve(s, ctx, jitter);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-sharpen");
-	int32_t kind = (int32_t)s->config.sharpen;
-	aa_fullscreen_pass_record(r, ctx->cmd, &s->sharpen[k], &kind, sizeof kind);
-	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	/* The compute resolve writes the displayed output itself; seed001's full-screen resolve writes history
+	 * only, so its output is this pass (a copy when sharpen is off) */
+	if (s->config.sharpen != AA_TAA_SHARPEN_OFF || !converging(s)) {
+		span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-sharpen");
+		int32_t kind = (int32_t)s->config.sharpen;
+		aa_fullscreen_pass_record(r, ctx->cmd, &s->sharpen[k], &kind, sizeof kind);
+		aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
+	}
 	s->parity = 1 - k;
 	s->history_valid = true;
 	if (s->history_frames < 1000000)

@@ -161,12 +161,14 @@ class Client:
 
 def wait_state(client, job, states, timeout=120):
     deadline = time.time() + timeout
+    last = None
     while time.time() < deadline:
         r = client.request({"op": "status", "job": job})
+        last = r["job"]["state"] if r.get("ok") else r
         if r.get("ok") and r["job"]["state"] in states:
             return r["job"]
         time.sleep(0.1)
-    raise RuntimeError("job %s did not reach %s" % (job, states))
+    raise RuntimeError("job %s did not reach %s (last seen: %s)" % (job, states, last))
 
 
 def http_get(port, path, method="GET", headers=None):

@@ -65,8 +65,9 @@ try:
     leftovers = [f for _, _, fs in os.walk(d.state) for f in fs if TEMP_FILE.match(f)]
     check(not leftovers, "no temporary files left, the 3 planted ones included (%s)" % leftovers)
 
-    # SIGTERM while a job runs: the daemon finishes it, then exits 0
-    job = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=6)})["job"]
+    # SIGTERM while a job runs: the daemon finishes it, then exits 0. The job is big enough to be seen
+    # running (6 frames at 64x36 from a warm store can start and finish between two polls)
+    job = c.request({"op": "submit", "job": dict(SMALL_JOB, frames=30, size="160x90")})["job"]
     wait_state(c, job, ["running"])
     check(d.stop() == 0, "SIGTERM during a job: aalabd exits 0")
     with open(os.path.join(d.state, "jobs", job, "job.json")) as f:

@@ -440,6 +440,33 @@ static void test_taa_parameters(void **state)
 	}
 }
 
+/* The compute resolves write the displayed image themselves: no copy pass after them unless sharpen is on
+ * (seed001's full-screen resolve writes history only, so its copy stays), and what they display without
+ * sharpening is the picture (every frame within 1 dB of none's or better), not a stale or empty image. */
+static void test_display_in_resolve(void **state)
+{
+	(void)state;
+	const char *methods[] = {"none", "taa", "taa-sobel", "taa:preset=accumulate", "taa:sharpen=normalized",
+				 "taa:preset=seed001"};
+	const bool copy[] = {false, false, false, false, true, true};
+	struct aa_job_spec spec;
+	make_spec(&spec, "thin-wires", "static", methods, 6, 64, 36, 0, 3, 8);
+	struct aa_job_result *r = run(&spec, NULL, NULL);
+	for (int m = 1; m < 6; m++)
+		for (int t = 0; t < 3; t++) {
+			const struct aa_frame_result *fr = &r->methods[m].frames[t];
+			bool sharpen = false;
+			for (int k = 0; k < fr->pass_count; k++)
+				sharpen |= !strcmp(fr->passes[k].name, "taa-sharpen");
+			if (sharpen != copy[m])
+				fail_msg("%s frame %d: taa-sharpen %s", methods[m], t, sharpen ? "recorded" : "missing");
+			const double none = r->methods[0].frames[t].metrics.psnr, mine = fr->metrics.psnr;
+			if (m != 4 && mine < none - 1.0) /* a sharpening kernel lowers PSNR (docs/methods.md) */
+				fail_msg("%s frame %d: %.2f dB against none's %.2f", methods[m], t, mine, none);
+		}
+	fixture_free(r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -452,6 +479,7 @@ int main(void)
 		cmocka_unit_test(test_hdr_teleport),
 		cmocka_unit_test(test_fast_ball),
 		cmocka_unit_test(test_taa_parameters),
+		cmocka_unit_test(test_display_in_resolve),
 	};
 	return fixture_status(cmocka_run_group_tests(tests, fixture_setup, fixture_teardown));
 }
