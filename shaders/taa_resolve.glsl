@@ -2,7 +2,8 @@
 // velocity of the closest-depth pixel in 3x3; history clipped toward the box centre in YCoCg;
 // luminance-difference feedback. MASTER (the thesis's "Master TAA"): the box is chosen and shrunk per
 // pixel by aliasedValue, from model IDs, depth pseudo-variances and the stabilised Sobel image.
-// Writes the new history: linear colour (alpha: linear depth, for the next frame's MASTER test).
+// Writes the new history: linear colour (alpha: linear depth, for the next frame's MASTER test), and the
+// same colour as the displayed image (location 1; dropped when a sharpen pass writes that instead).
 // Included by taa_resolve.frag (MASTER_TAA 0) and taa_master_resolve.frag (MASTER_TAA 1).
 #include "taa_common.glsl"
 
@@ -24,6 +25,7 @@ layout(push_constant) uniform Push {
 } push;
 
 layout(location = 0) out vec4 out_history;
+layout(location = 1) out vec4 out_display;
 
 void main()
 {
@@ -114,5 +116,7 @@ void main()
 		result = mix(cur, h, k);
 	}
 	vec3 rgb = max(ycocg_to_rgb(result), vec3(0.0));
-	out_history = vec4(finite3(rgb) ? rgb : vec3(0.0), texelFetch(surface, p, 0).y);
+	vec3 shown = finite3(rgb) ? rgb : vec3(0.0);
+	out_history = vec4(shown, texelFetch(surface, p, 0).y);
+	out_display = vec4(shown, 1.0);
 }

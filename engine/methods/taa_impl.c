@@ -170,13 +170,15 @@ static int create_resolve(struct aa_method_state *s, int k, struct aa_error *err
 		d.bindings[master ? 12 : 8] = (struct aa_compute_binding){AA_COMPUTE_STORAGE_IMAGE, &s->output, NULL};
 		return aa_compute_pass_create(r->gpu, &s->converge[k], &d, err);
 	}
-	/* Master TAA also reads the model IDs and this frame's stabilised Sobel image */
+	/* Master TAA also reads the model IDs and this frame's stabilised Sobel image. The resolve writes the
+	 * displayed output too, unless the sharpen pass writes it from history. */
 	struct aa_fullscreen_desc resolve = {
 		.frag = master ? "taa_master_resolve.frag" : "taa_resolve.frag",
 		.source_count = master ? 6 : 4,
 		.sources = {s->scene.output, &s->history[read], velocity, surface, ids, &s->sobel[write]},
 		.linear = {false, true, false, false, false, false},
-		.target = &s->history[write], .push_size = sizeof(struct taa_push),
+		.target = &s->history[write], .push_size = sizeof(struct taa_push), .outputs = 2,
+		.second_target = s->config.sharpen == AA_TAA_SHARPEN_OFF ? &s->output : NULL,
 	};
 	return aa_fullscreen_pass_create(r, &s->resolve[k], &resolve, err);
 }
@@ -348,9 +350,8 @@ int aa_taa_render(struct aa_method_state *s, struct aa_frame_ctx *ctx, struct aa
 	span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-resolve");
 	record_resolve(s, ctx, jitter);
 	aa_gpu_timer_end(ctx->cmd, ctx->timer, span);
-	/* The compute resolve writes the displayed output itself; seed001's full-screen resolve writes history
-	 * only, so its output is this pass (a copy when sharpen is off) */
-	if (s->config.sharpen != AA_TAA_SHARPEN_OFF || !converging(s)) {
+	/* Every resolve writes the displayed output itself; with sharpen on, this pass writes it instead */
+	if (s->config.sharpen != AA_TAA_SHARPEN_OFF) {
 		span = aa_gpu_timer_begin(ctx->cmd, ctx->timer, "taa-sharpen");
 		int32_t kind = (int32_t)s->config.sharpen;
 		aa_fullscreen_pass_record(r, ctx->cmd, &s->sharpen[k], &kind, sizeof kind);

@@ -688,21 +688,25 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 						 : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 }
 
-int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,
-			   struct aa_error *err)
+int aa_renderer_color_pass(struct aa_renderer *r, const VkFormat format[2], int outputs, bool load,
+			   VkRenderPass *out, struct aa_error *err)
 {
+	VkFormat second = outputs > 1 ? format[1] : VK_FORMAT_UNDEFINED;
 	for (int i = 0; i < r->color_pass_count; i++)
-		if (r->color_passes[i].format == format && r->color_passes[i].load == load) {
+		if (r->color_passes[i].format[0] == format[0] && r->color_passes[i].format[1] == second &&
+		    r->color_passes[i].outputs == outputs && r->color_passes[i].load == load) {
 			*out = r->color_passes[i].pass;
 			return 0;
 		}
 	if (r->color_pass_count == (int)(sizeof r->color_passes / sizeof r->color_passes[0]))
 		return aa_error_set(err, AA_ERR_INTERNAL, "", "too many colour pass formats");
-	struct aa_gpu_pass_desc d = {.color_count = 1, .color_formats = {format}, .color_load = {load},
-				     .samples = 1};
+	struct aa_gpu_pass_desc d = {.color_count = outputs, .color_formats = {format[0], second},
+				     .color_load = {load, load}, .samples = 1};
 	if (aa_gpu_render_pass_create(r->gpu, &d, out, err))
 		return -1;
-	r->color_passes[r->color_pass_count].format = format;
+	r->color_passes[r->color_pass_count].format[0] = format[0];
+	r->color_passes[r->color_pass_count].format[1] = second;
+	r->color_passes[r->color_pass_count].outputs = outputs;
 	r->color_passes[r->color_pass_count].load = load;
 	r->color_passes[r->color_pass_count++].pass = *out;
 	return 0;
@@ -713,23 +717,26 @@ int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *
 {
 	memset(p, 0, sizeof *p);
 	p->target = d->target;
+	p->second_target = d->outputs > 1 ? d->second_target : NULL;
 	p->load = d->accumulate || d->keep;
+	int outputs = d->outputs > 1 ? 2 : 1;
+	VkFormat formats[2] = {d->target->format, p->second_target ? p->second_target->format : VK_FORMAT_UNDEFINED};
 	VkDescriptorType types[AA_PASS_MAX_SOURCES];
 	for (int i = 0; i < d->source_count; i++)
 		types[i] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-	if (aa_renderer_color_pass(r, d->target->format, p->load, &p->render_pass, err) ||
+	if (aa_renderer_color_pass(r, formats, outputs, p->load, &p->render_pass, err) ||
 	    aa_gpu_layout_create(r->gpu, types, NULL, d->source_count, d->push_size, &p->pipeline, err))
 		return -1;
 	struct aa_gpu_graphics_desc g = {
 		.vert = "fullscreen.vert", .frag = d->frag, .frag_code = d->frag_code, .vertex_layout = AA_VERTEX_NONE,
-		.render_pass = p->render_pass, .color_count = 1, .samples = 1, .cull = VK_CULL_MODE_NONE,
+		.render_pass = p->render_pass, .color_count = outputs, .samples = 1, .cull = VK_CULL_MODE_NONE,
 		.blend = d->accumulate ? AA_BLEND_ADD : AA_BLEND_NONE, .layout = p->pipeline.layout,
 		.frag_specialization = d->specialization,
 	};
-	struct aa_gpu_image *att[1] = {d->target};
+	struct aa_gpu_image *att[2] = {d->target, p->second_target};
 	if (aa_gpu_graphics_pipeline_create(r->gpu, &g, &p->pipeline, err) ||
 	    aa_gpu_descriptor_set_alloc(r->gpu, r->pass_pool, &p->pipeline, &p->set, err) ||
-	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, 1, &p->framebuffer, err))
+	    aa_gpu_framebuffer_create(r->gpu, p->render_pass, att, p->second_target ? 2 : 1, &p->framebuffer, err))
 		return -1;
 	for (int i = 0; i < d->source_count; i++)
 		aa_gpu_write_image(r->gpu, p->set, (uint32_t)i, 0, types[i],
@@ -753,13 +760,17 @@ void aa_fullscreen_pass_record(struct aa_renderer *r, VkCommandBuffer cmd, struc
 			       const void *push, uint32_t push_size)
 {
 	(void)r;
-	if (p->load && p->target->layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
-		aa_gpu_image_barrier(cmd, p->target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-	VkClearValue clear = {.color = {.float32 = {0, 0, 0, 0}}};
-	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, p->target->width, p->target->height, &clear, 1);
+	struct aa_gpu_image *targets[2] = {p->target, p->second_target};
+	int count = p->second_target ? 2 : 1;
+	for (int i = 0; i < count; i++)
+		if (p->load && targets[i]->layout != VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL)
+			aa_gpu_image_barrier(cmd, targets[i], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+	VkClearValue clear[2] = {{.color = {.float32 = {0, 0, 0, 0}}}, {.color = {.float32 = {0, 0, 0, 0}}}};
+	aa_gpu_begin_pass(cmd, p->render_pass, p->framebuffer, p->target->width, p->target->height, clear, count);
 	aa_fullscreen_draw(cmd, &p->pipeline, p->set, push, push_size);
-	p->target->layout = p->load ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
-				    : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+	for (int i = 0; i < count; i++)
+		targets[i]->layout = p->load ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
+					     : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
 void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass *p)

@@ -158,7 +158,7 @@ struct aa_renderer {
 	struct aa_gpu_pipeline scene_layout;    /* layout of every scene and shadow pipeline */
 	struct aa_scene_variant variants[24]; /* one per distinct target kind in the job */
 	int variant_count;
-	struct { VkFormat format; bool load; VkRenderPass pass; } color_passes[16]; /* by target format */
+	struct { VkFormat format[2]; int outputs; bool load; VkRenderPass pass; } color_passes[16]; /* by targets */
 	int color_pass_count;
 	struct aa_gpu_pipeline shadow_pipeline, shadow_cutout_pipeline;
 	VkDescriptorPool pool;           /* the texture sets */
@@ -227,7 +227,8 @@ void aa_renderer_draw_scene(struct aa_renderer *r, VkCommandBuffer cmd, struct a
 int aa_draw_order_front_to_back(const struct aa_box *bounds, int count, vec3 eye, int *order);
 
 /* A full-screen pass: a fragment shader reads up to eight sampled images (bindings 0..7, in order) and
- * writes one colour target of any format. Used by every post-process method. */
+ * writes one colour target of any format, or two (a resolve that writes history and the displayed
+ * image at once). Used by every post-process method. */
 #define AA_PASS_MAX_SOURCES 8
 struct aa_fullscreen_desc {
 	const char *frag;
@@ -236,6 +237,8 @@ struct aa_fullscreen_desc {
 	struct aa_gpu_image *sources[AA_PASS_MAX_SOURCES];
 	bool linear[AA_PASS_MAX_SOURCES]; /* bilinear, clamp-to-edge sampling instead of nearest */
 	struct aa_gpu_image *target;
+	int outputs;                      /* colour locations the shader writes: 1 (0 means 1) or 2 */
+	struct aa_gpu_image *second_target; /* location 1's target, same size; NULL drops its writes */
 	bool accumulate;                  /* blend ONE+ONE into the kept contents (reference accumulation) */
 	bool keep;                        /* keep the target's contents (no clear), e.g. with discard */
 	uint32_t push_size;               /* bytes of push constants the shader takes */
@@ -246,7 +249,7 @@ struct aa_fullscreen_pass {
 	VkDescriptorSet set;
 	VkFramebuffer framebuffer;
 	VkRenderPass render_pass;         /* borrowed from the renderer's cache */
-	struct aa_gpu_image *target;
+	struct aa_gpu_image *target, *second_target;
 	bool load;
 };
 int aa_fullscreen_pass_create(struct aa_renderer *r, struct aa_fullscreen_pass *p,
@@ -261,9 +264,10 @@ void aa_fullscreen_pass_destroy(struct aa_renderer *r, struct aa_fullscreen_pass
 void aa_fullscreen_draw(VkCommandBuffer cmd, const struct aa_gpu_pipeline *pipeline, VkDescriptorSet set,
 			const void *push, uint32_t push_size);
 
-/* A single-subpass render pass writing one colour attachment of this format (cached). */
-int aa_renderer_color_pass(struct aa_renderer *r, VkFormat format, bool load, VkRenderPass *out,
-			   struct aa_error *err);
+/* A single-subpass render pass writing `outputs` colour locations (1 or 2) of these formats (cached);
+ * VK_FORMAT_UNDEFINED for location 1: no attachment, the shader's writes there are dropped. */
+int aa_renderer_color_pass(struct aa_renderer *r, const VkFormat format[2], int outputs, bool load,
+			   VkRenderPass *out, struct aa_error *err);
 /* Creates a GPU image and records it in info->memory under `name`. */
 int aa_renderer_image_create(struct aa_renderer *r, struct aa_gpu_image *img, int width, int height,
 			     VkFormat format, VkImageUsageFlags usage, const char *name,

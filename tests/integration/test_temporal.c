@@ -440,27 +440,27 @@ static void test_taa_parameters(void **state)
 	}
 }
 
-/* The compute resolves write the displayed image themselves: no copy pass after them unless sharpen is on
- * (seed001's full-screen resolve writes history only, so its copy stays), and what they display without
- * sharpening is the picture (every frame within 1 dB of none's or better), not a stale or empty image. */
+/* The resolves (compute, and seed001's full-screen one) write the displayed image themselves: no copy
+ * pass after them unless sharpen is on, and what they display without sharpening is the picture (every
+ * frame within 1 dB of none's or better), not a stale or empty image. */
 static void test_display_in_resolve(void **state)
 {
 	(void)state;
 	const char *methods[] = {"none", "taa", "taa-sobel", "taa:preset=accumulate", "taa:sharpen=normalized",
-				 "taa:preset=seed001"};
-	/* a taa-sharpen pass: sharpening, or seed001's copy */
-	const bool copy[] = {false, false, false, false, true, true};
-	const bool sharpened[] = {false, false, false, false, true, false};
+				 "taa:preset=seed001", "taa-sobel:preset=seed001", "taa:preset=seed001,sharpen=original"};
+	/* a taa-sharpen pass: sharpening only */
+	const bool sharpened[] = {false, false, false, false, true, false, false, true};
+	const int count = (int)(sizeof methods / sizeof methods[0]);
 	struct aa_job_spec spec;
-	make_spec(&spec, "thin-wires", "static", methods, 6, 64, 36, 0, 3, 8);
+	make_spec(&spec, "thin-wires", "static", methods, count, 64, 36, 0, 3, 8);
 	struct aa_job_result *r = run(&spec, NULL, NULL);
-	for (int m = 1; m < 6; m++)
+	for (int m = 1; m < count; m++)
 		for (int t = 0; t < 3; t++) {
 			const struct aa_frame_result *fr = &r->methods[m].frames[t];
 			bool sharpen = false;
 			for (int k = 0; k < fr->pass_count; k++)
 				sharpen |= !strcmp(fr->passes[k].name, "taa-sharpen");
-			if (sharpen != copy[m])
+			if (sharpen != sharpened[m])
 				fail_msg("%s frame %d: taa-sharpen %s", methods[m], t, sharpen ? "recorded" : "missing");
 			const double none = r->methods[0].frames[t].metrics.psnr, mine = fr->metrics.psnr;
 			if (!sharpened[m] && mine < none - 1.0) /* a sharpening kernel lowers PSNR (docs/methods.md) */
