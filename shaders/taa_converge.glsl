@@ -310,6 +310,15 @@ uvec4 with_position_luma(uvec4 t, int i, uint value)
 		     : (i < 12 ? uvec4(t.xy, word, t.w) : uvec4(t.xyz, word));
 }
 
+// The resolve's result: history (colour, and n, the frames it holds) and the displayed image, both
+// finite and within half-float range
+void store_result(ivec2 p, vec3 h, float n)
+{
+	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
+	imageStore(history_out, p, vec4(h, n));
+	imageStore(display_out, p, vec4(h, 1.0));
+}
+
 void main()
 {
 	ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -325,8 +334,7 @@ void main()
 
 	Neighbourhood nb = gather(p);
 	if (!nb.any_finite) { // every sample poisoned: write finite black rather than keep any of it
-		imageStore(history_out, p, vec4(0.0, 0.0, 0.0, 1.0));
-		imageStore(display_out, p, vec4(0.0, 0.0, 0.0, 1.0));
+		store_result(p, vec3(0.0), 1.0);
 #if !PRODUCTION // production's cycle images are 1x1 and unused
 		imageStore(run_out, p, vec4(0.0));
 #endif
@@ -383,9 +391,7 @@ void main()
 		n = min(n + 1.0, 1.0 / weight);
 		h = resolve_mix(from_working(w), nb.filtered, 1.0 / n);
 	}
-	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
-	imageStore(history_out, p, vec4(h, n));
-	imageStore(display_out, p, vec4(h, 1.0));
+	store_result(p, h, n);
 #else
 	// A still pixel's run: how many frames it has been still, the mean of its own samples since the
 	// last whole cycle, and the lumas of its own samples by jitter position (valid once a whole cycle
@@ -430,9 +436,7 @@ void main()
 	}
 	// run lengths past two cycles carry no more information
 	run_length = run_length >= 2.0 * cycle ? run_length - cycle : run_length;
-	h = finite3(h) ? clamp(h, vec3(0.0), vec3(65504.0)) : vec3(0.0);
-	imageStore(history_out, p, vec4(h, n));
-	imageStore(display_out, p, vec4(h, 1.0));
+	store_result(p, h, n);
 	imageStore(run_out, p, vec4(cycle_mean, run_length));
 #endif
 }

@@ -194,7 +194,10 @@ static int create_passes(struct aa_method_state *s, struct aa_error *err)
 		return -1;
 	for (int k = 0; k < 2; k++) {
 		int read = k, write = 1 - k;
-		if (create_resolve(s, k, err) ||
+		if (create_resolve(s, k, err))
+			return -1;
+		/* with sharpen off the resolve writes the displayed output: no sharpen pass to make */
+		if (s->config.sharpen != AA_TAA_SHARPEN_OFF &&
 		    aa_fullscreen_pass_create(r, &s->sharpen[k], &(struct aa_fullscreen_desc){
 				.frag = "taa_sharpen.frag", .source_count = 1, .sources = {&s->history[write]},
 				.target = &s->output, .push_size = sizeof(int32_t)}, err))
